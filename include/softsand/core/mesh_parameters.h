@@ -1,0 +1,45 @@
+#ifndef softsand_core_mesh_parameters_h
+#define softsand_core_mesh_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <vector>
+
+namespace softsand
+{
+  namespace core
+  {
+    using namespace dealii;
+
+    /**
+     * The fluid domain (an axis-aligned box whose faces carry boundary ids
+     * 0..2 dim-1 in the order x min, x max, y min, y max, z min, z max) and
+     * how the octree mesh is refined around grain surfaces.
+     */
+    template <int dim>
+    struct MeshParameters
+    {
+      Point<dim> lower_corner;
+      Point<dim> upper_corner;
+      /// Coarse cells per direction; empty: cubes of the shortest edge.
+      std::vector<unsigned int> coarse_cells;
+      unsigned int              global_refinements = 0;
+      /// Cells across the smallest grain diameter on grain surfaces (0: none).
+      double                    cells_per_diameter = 8;
+      /// Uniform: refine the whole mesh to the grain-surface cell size.
+      bool                      uniform_refinement = false;
+      unsigned int              max_refinement_level = 14;
+      /// Kelly-estimator refinement cycles in the fluid after the first solve.
+      unsigned int              kelly_cycles        = 0;
+      double                    kelly_refine_fraction = 0.2;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace core
+} // namespace softsand
+
+#endif

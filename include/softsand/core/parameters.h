@@ -1,0 +1,50 @@
+#ifndef softsand_core_parameters_h
+#define softsand_core_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <softsand/core/mesh_parameters.h>
+#include <softsand/core/simulation_control.h>
+#include <softsand/coupling/grain_solid_field.h>
+#include <softsand/dem/grain_parameters.h>
+#include <softsand/fluid/boundary_conditions.h>
+#include <softsand/fluid/fluid_parameters.h>
+#include <softsand/io/output_parameters.h>
+#include <softsand/postprocess/flow_diagnostics.h>
+
+#include <string>
+
+namespace softsand
+{
+  namespace core
+  {
+    /**
+     * All parameters of a scene, one struct per subsection of the .prm file.
+     */
+    template <int dim>
+    struct Parameters
+    {
+      SimulationControl                    simulation_control;
+      MeshParameters<dim>                  mesh;
+      dem::GrainParameters<dim>            grains;
+      coupling::VoidFractionParameters     void_fraction;
+      fluid::FluidParameters               fluid;
+      fluid::SolverParameters              fluid_solver;
+      fluid::BoundaryConditions<dim>       boundary_conditions;
+      io::OutputParameters                 output;
+      postprocess::PostprocessingParameters postprocessing;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /// The space dimension named by 'set dimension = 2|3' in a parameter
+    /// file (3 if absent); stops with a clear message for a missing file.
+    unsigned int
+    read_dimension(const std::string &filename);
+  } // namespace core
+} // namespace softsand
+
+#endif

@@ -1,0 +1,63 @@
+#ifndef softsand_dem_grain_parameters_h
+#define softsand_dem_grain_parameters_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <softsand/dem/grain.h>
+
+#include <string>
+#include <vector>
+
+namespace softsand
+{
+  namespace dem
+  {
+    /**
+     * Where the grains of a scene come from: an explicit list, a pack file
+     * (x y [z] radius [velocities]), a lattice (simple cubic, BCC) or a
+     * random non-overlapping pack at a target solid fraction.
+     */
+    template <int dim>
+    struct GrainParameters
+    {
+      enum class Source
+      {
+        none,
+        list,
+        file,
+        simple_cubic,
+        bcc,
+        random
+      };
+      Source      source = Source::none;
+      std::string list;
+      std::string file;
+      double      diameter        = 1e-4;
+      double      lattice_spacing = 2e-4;
+      bool        region_is_domain = true;
+      Point<dim>  region_lower, region_upper;
+      double      solid_fraction = 0.3;
+      unsigned int seed          = 1;
+      std::string  size_distribution = "constant";
+      double       min_diameter = 0, max_diameter = 0, mean_diameter = 0,
+             diameter_sd = 0;
+      Tensor<1, dim> velocity;
+      Tensor<1, 3>   angular_velocity;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /// Build the grains of a scene; @p domain is the fluid box (the default
+    /// region of lattices and random packs).
+    template <int dim>
+    std::vector<Grain<dim>>
+    create_grains(const GrainParameters<dim> &parameters,
+                  const BoundingBox<dim>     &domain);
+  } // namespace dem
+} // namespace softsand
+
+#endif

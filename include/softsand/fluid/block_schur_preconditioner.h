@@ -1,0 +1,60 @@
+#ifndef softsand_fluid_block_schur_preconditioner_h
+#define softsand_fluid_block_schur_preconditioner_h
+
+#include <deal.II/base/subscriptor.h>
+
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <deal.II/lac/trilinos_precondition.h>
+
+#include <vector>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    using namespace dealii;
+
+    /**
+     * Block upper-triangular preconditioner for the saddle-point system
+     * [A B^T; B 0] of the penalized Navier-Stokes equations, applied inside
+     * FGMRES: one AMG V-cycle for the velocity block A and, for the Schur
+     * complement S = B A^-1 B^T,
+     *
+     *   S^-1 ~ M_(1/mu)^-1 + L_(1/beta)^-1,
+     *
+     * the Cahouet-Chabard sum generalised to a variable zeroth-order
+     * coefficient beta (mass/dt in fluid, the penalty inside grains): where
+     * beta dominates, A ~ beta M and S ~ -div((1/beta) grad), a Laplacian,
+     * not a mass matrix. M is applied by ILU(0), L by one AMG V-cycle. Without
+     * the Laplacian it is the plain (or weighted) pressure-mass
+     * preconditioner.
+     */
+    class BlockSchurPreconditioner : public Subscriptor
+    {
+    public:
+      using BlockVector = TrilinosWrappers::MPI::BlockVector;
+
+      BlockSchurPreconditioner(
+        const TrilinosWrappers::BlockSparseMatrix &system_matrix,
+        const TrilinosWrappers::BlockSparseMatrix &pressure_mass_matrix,
+        const TrilinosWrappers::BlockSparseMatrix *pressure_laplace_matrix,
+        const std::vector<std::vector<bool>>      &velocity_constant_modes,
+        const bool                                 convection,
+        const unsigned int                         amg_sweeps);
+
+      void
+      vmult(BlockVector &dst, const BlockVector &src) const;
+
+    private:
+      const TrilinosWrappers::BlockSparseMatrix &system_matrix;
+      TrilinosWrappers::PreconditionAMG          velocity_amg;
+      TrilinosWrappers::PreconditionILU          pressure_mass_ilu;
+      TrilinosWrappers::PreconditionAMG          pressure_laplace_amg;
+      bool                                       use_laplace;
+      mutable TrilinosWrappers::MPI::Vector      tmp_u, tmp_p;
+    };
+  } // namespace fluid
+} // namespace softsand
+
+#endif

@@ -1,0 +1,94 @@
+#ifndef softsand_fluid_boundary_conditions_h
+#define softsand_fluid_boundary_conditions_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/lac/affine_constraints.h>
+
+#include <array>
+#include <string>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    using namespace dealii;
+
+    /**
+     * Boundary conditions on the faces of the box domain, one subsection per
+     * face ("x min" = boundary id 0, "x max" = 1, "y min" = 2, ...).
+     * Velocity-type conditions become constraints; a pressure face is a
+     * natural (do-nothing) condition with prescribed mean normal stress.
+     */
+    template <int dim>
+    class BoundaryConditions
+    {
+    public:
+      enum class Type
+      {
+        no_slip,
+        velocity,
+        flow_rate,
+        function,
+        pressure,
+        moving_wall,
+        symmetry
+      };
+
+      struct Face
+      {
+        Type           type = Type::no_slip;
+        Tensor<1, dim> velocity;
+        double         flow_rate = 0;
+        std::string    function;
+        double         pressure = 0;
+      };
+
+      static constexpr unsigned int n_faces = 2 * dim;
+
+      static std::string
+      face_name(const unsigned int boundary_id);
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      /// @p domain gives face areas for flow-rate conditions.
+      void
+      parse_parameters(ParameterHandler &prm, const BoundingBox<dim> &domain);
+
+      /// Add the velocity constraints of all faces at @p time.
+      void
+      make_velocity_constraints(const DoFHandler<dim>     &dof_handler,
+                                AffineConstraints<double> &constraints,
+                                const double               time) const;
+
+      const Face &
+      face(const unsigned int boundary_id) const
+      {
+        return faces[boundary_id];
+      }
+
+      bool
+      has_pressure_face() const;
+
+      /// The imposed velocity on a velocity / flow-rate face (for reference
+      /// quantities such as the drag coefficient); zero if none.
+      Tensor<1, dim>
+      inflow_velocity() const;
+
+      /// Area of face @p boundary_id of the box.
+      double
+      face_area(const unsigned int boundary_id) const;
+
+    private:
+      std::array<Face, n_faces> faces;
+      BoundingBox<dim>          domain;
+    };
+  } // namespace fluid
+} // namespace softsand
+
+#endif

@@ -1,0 +1,67 @@
+#ifndef softsand_fluid_fluid_parameters_h
+#define softsand_fluid_fluid_parameters_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    using namespace dealii;
+
+    /**
+     * Fluid properties and the penalization parameter Theta of the paper's
+     * Eq. (6): cells covered by solid carry density rho (1 + Theta (1 - vf)).
+     */
+    struct FluidParameters
+    {
+      double      density   = 1000;
+      double      viscosity = 1e-3;
+      double      theta     = 1e6;
+      /// Body force per unit volume (N/m^3), a function of x, y, z, t.
+      std::string body_force = "0; 0; 0";
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+
+    /**
+     * Nonlinear and linear solver settings of the penalized Navier-Stokes
+     * system.
+     */
+    struct SolverParameters
+    {
+      enum class Nonlinear
+      {
+        newton,
+        picard
+      };
+      /// Schur complement approximation of the block preconditioner.
+      enum class Schur
+      {
+        cahouet_chabard,
+        weighted_mass,
+        mass
+      };
+      Nonlinear    nonlinear_method         = Nonlinear::newton;
+      double       nonlinear_tolerance      = 1e-8;
+      unsigned int max_nonlinear_iterations = 30;
+      double       linear_tolerance         = 1e-8;
+      unsigned int max_linear_iterations    = 1000;
+      Schur        schur                    = Schur::cahouet_chabard;
+      unsigned int velocity_amg_sweeps      = 2;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+  } // namespace fluid
+} // namespace softsand
+
+#endif

@@ -1,0 +1,219 @@
+#ifndef softsand_fluid_penalized_navier_stokes_h
+#define softsand_fluid_penalized_navier_stokes_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_block_sparse_matrix.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+
+#include <softsand/fluid/boundary_conditions.h>
+#include <softsand/fluid/fluid_parameters.h>
+#include <softsand/fluid/solid_field.h>
+
+#include <functional>
+#include <memory>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    using namespace dealii;
+
+    /**
+     * Incompressible Navier-Stokes with the paper's penalization (Eq. 6) on a
+     * distributed octree mesh, Taylor-Hood Q2-Q1 elements (DESIGN.md section
+     * 2). Where solids cover the fluid (void fraction vf < 1) the density is
+     * rho* = rho (1 + Theta (1 - vf)) and the momentum predictor relaxes to
+     * the solid's rigid velocity u_s:
+     *
+     *   rho* (u^{n+1} - u~) / dt + rho (w . grad) u^{n+1} - mu lap u^{n+1}
+     *     + grad p^{n+1} = f,   div u^{n+1} = 0,  u~ = vf u^n + (1 - vf) u_s
+     *
+     * (BDF1 shown; BDF2 is analogous). The steady modes solve the fixed point
+     * of the same scheme, u^{n+1} = u^n: a Brinkman term
+     * beta (u - u_s) with beta = rho (1 + Theta (1 - vf)) (1 - vf) / dt, so
+     * the steady solution equals the time-marched steady state exactly.
+     */
+    template <int dim>
+    class PenalizedNavierStokes
+    {
+    public:
+      using BlockVector = TrilinosWrappers::MPI::BlockVector;
+
+      /// What one call of the linear solver did.
+      struct SolveStatistics
+      {
+        unsigned int linear_iterations    = 0; // of the last linear solve
+        unsigned int total_linear_iterations = 0;
+        unsigned int nonlinear_iterations = 0;
+        double       nonlinear_change     = 0;
+      };
+
+      PenalizedNavierStokes(parallel::distributed::Triangulation<dim> &tria,
+                            const FluidParameters          &fluid_parameters,
+                            const SolverParameters         &solver_parameters,
+                            const BoundaryConditions<dim>  &boundary_conditions,
+                            ConditionalOStream             &pcout,
+                            TimerOutput                    &timer);
+
+      /// Distribute dofs, build constraints and sparsity after any change of
+      /// the mesh. Fields are reset to zero.
+      void
+      setup_dofs();
+
+      /// The solids seen by the fluid (nullptr: pure fluid).
+      void
+      set_solid_field(const SolidField<dim> *solids);
+
+      /// Time of the boundary conditions and the body force.
+      void
+      set_time(const double time);
+
+      /// One Stokes-Brinkman solve (no convection); @p penalty_time_step is
+      /// the dt in the Brinkman coefficient.
+      void
+      solve_steady_stokes(const double penalty_time_step);
+
+      /// Newton or Picard iterations to the steady Navier-Stokes-Brinkman
+      /// solution, starting from the current solution.
+      void
+      solve_steady_navier_stokes(const double penalty_time_step);
+
+      /// Prepare time marching from the current solution (the initial state).
+      void
+      start_time_stepping();
+
+      /// One BDF step to the current time (set_time() first). The first step
+      /// after start_time_stepping() is BDF1.
+      void
+      advance(const double time_step, const unsigned int bdf_order);
+
+      /// ||u^{n+1} - u^n|| / ||u^{n+1}|| of the last step.
+      double
+      relative_velocity_change() const;
+
+      /**
+       * Loop over the quadrature points covered by solids and hand to @p f
+       * the solid index, the point and the reaction force the fluid exerts
+       * on the solid there, times JxW: the penalization term of the momentum
+       * equation, (1 - vf) rho* (u^{n+1} - u_s)/dt (steady: beta (u - u_s)).
+       * Summed over a solid it is the exact discrete fluid force on it.
+       */
+      void
+      for_each_solid_reaction(
+        const std::function<void(const int,
+                                 const Point<dim> &,
+                                 const Tensor<1, dim> &)> &f) const;
+
+      /**
+       * The paper's Eq. (7) for diagnostics: hand to @p f the solid index,
+       * the point and (mu lap u - grad p) (1 - vf) JxW at points covered by
+       * solids. It misses the stress jumps across element faces.
+       */
+      void
+      for_each_solid_stress_divergence(
+        const std::function<void(const int,
+                                 const Point<dim> &,
+                                 const Tensor<1, dim> &)> &f) const;
+
+      const DoFHandler<dim> &
+      get_dof_handler() const
+      {
+        return dof_handler;
+      }
+      const FESystem<dim> &
+      get_fe() const
+      {
+        return fe;
+      }
+      /// Ghosted solution (velocity block 0, pressure block 1).
+      const BlockVector &
+      get_solution() const
+      {
+        return solution;
+      }
+      BlockVector &
+      get_solution()
+      {
+        return solution;
+      }
+      const SolveStatistics &
+      get_statistics() const
+      {
+        return statistics;
+      }
+      types::global_dof_index
+      n_dofs() const
+      {
+        return dof_handler.n_dofs();
+      }
+
+    private:
+      enum class Assembly
+      {
+        steady_stokes,
+        steady_picard,
+        steady_newton,
+        transient
+      };
+
+      void
+      make_constraints();
+      void
+      assemble(const Assembly kind,
+               const double   time_step,
+               const unsigned int bdf_order);
+      unsigned int
+      solve_linear(const bool convection);
+      /// Penalty coefficient of the fixed-point (steady) Brinkman term.
+      double
+      brinkman_coefficient(const double void_fraction,
+                           const double penalty_time_step) const;
+
+      MPI_Comm                                   mpi_communicator;
+      parallel::distributed::Triangulation<dim> &triangulation;
+      const FluidParameters                     &fluid_parameters;
+      const SolverParameters                    &solver_parameters;
+      const BoundaryConditions<dim>             &boundary_conditions;
+      ConditionalOStream                        &pcout;
+      TimerOutput                               &timer;
+
+      FESystem<dim>            fe;
+      DoFHandler<dim>          dof_handler;
+      AffineConstraints<double> constraints;
+      std::vector<IndexSet>    owned_partitioning;
+      std::vector<IndexSet>    relevant_partitioning;
+
+      TrilinosWrappers::BlockSparseMatrix system_matrix;
+      /// Pressure blocks of the Schur complement approximation.
+      TrilinosWrappers::BlockSparseMatrix pressure_mass_matrix;
+      TrilinosWrappers::BlockSparseMatrix pressure_laplace_matrix;
+
+      BlockVector solution, old_solution, older_solution;
+      BlockVector system_rhs;
+
+      const SolidField<dim>          *solid_field = nullptr;
+      std::unique_ptr<FunctionParser<dim>> body_force;
+      double                           time              = 0;
+      /// dt the reaction force refers to and whether it is a steady state.
+      double                           last_time_step    = 1;
+      unsigned int                     last_bdf_order    = 1;
+      bool                             last_was_steady   = true;
+      unsigned int                     steps_since_start = 0;
+      SolveStatistics                  statistics;
+      double                           last_change = 0;
+    };
+  } // namespace fluid
+} // namespace softsand
+
+#endif

@@ -1,0 +1,44 @@
+#ifndef softsand_fluid_solid_field_h
+#define softsand_fluid_solid_field_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/grid/tria.h>
+#include <deal.II/grid/tria_accessor.h>
+
+#include <vector>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    using namespace dealii;
+
+    /**
+     * What the penalized fluid needs to know about the solids: at the
+     * quadrature points of a cell, the void fraction vf (1 in fluid, 0 inside
+     * a solid) and the rigid velocity u_s of the solid covering the point.
+     * The fluid module sees only this interface; coupling/ implements it for
+     * grains.
+     */
+    template <int dim>
+    class SolidField
+    {
+    public:
+      virtual ~SolidField() = default;
+
+      /// Fill @p void_fraction, @p solid_velocity and @p solid_index (-1:
+      /// no solid) for the @p points of @p cell. Cells far from any solid
+      /// return quickly with vf = 1.
+      virtual void
+      evaluate(const CellAccessor<dim, dim> &cell,
+               const std::vector<Point<dim>>  &points,
+               std::vector<double>            &void_fraction,
+               std::vector<Tensor<1, dim>>    &solid_velocity,
+               std::vector<int>               &solid_index) const = 0;
+    };
+  } // namespace fluid
+} // namespace softsand
+
+#endif

@@ -1,0 +1,47 @@
+#ifndef softsand_io_field_output_h
+#define softsand_io_field_output_h
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace softsand
+{
+  namespace io
+  {
+    using namespace dealii;
+
+    /**
+     * Fluid fields for ParaView: one VTU per rank and step, a PVTU per step
+     * and a PVD time series. The PVD is rewritten atomically (temporary file
+     * + rename) after the step's files are complete, so a viewer never sees
+     * a reference to a partial step.
+     */
+    template <int dim>
+    class FieldOutput
+    {
+    public:
+      FieldOutput(const std::string &directory, const std::string &base_name);
+
+      /// @p cell_void_fraction is indexed by active cell index.
+      void
+      write(const DoFHandler<dim>                    &dof_handler,
+            const TrilinosWrappers::MPI::BlockVector &solution,
+            const Vector<float>                      &cell_void_fraction,
+            const double                              time);
+
+    private:
+      std::string                                 directory;
+      std::string                                 base_name;
+      unsigned int                                counter = 0;
+      std::vector<std::pair<double, std::string>> records;
+    };
+  } // namespace io
+} // namespace softsand
+
+#endif

@@ -1,0 +1,96 @@
+#include <softsand/core/mesh_parameters.h>
+#include <softsand/core/parameter_tools.h>
+
+#include <deal.II/base/utilities.h>
+
+namespace softsand
+{
+  namespace core
+  {
+    template <int dim>
+    void
+    MeshParameters<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("mesh");
+      declare_double_list(prm,
+                          "lower corner",
+                          dim == 2 ? "0, 0" : "0, 0, 0",
+                          "Lower corner of the box domain (m).");
+      declare_double_list(prm,
+                          "upper corner",
+                          dim == 2 ? "1e-3, 1e-3" : "1e-3, 1e-3, 1e-3",
+                          "Upper corner of the box domain (m).");
+      prm.declare_entry("coarse cells",
+                        "",
+                        Patterns::List(Patterns::Integer(1), 0, dim),
+                        "Number of coarse cells per direction; empty: cubic "
+                        "coarse cells with the shortest box edge.");
+      prm.declare_entry("global refinements",
+                        "0",
+                        Patterns::Integer(0, 12),
+                        "Uniform refinements of the coarse mesh.");
+      prm.declare_entry(
+        "cells per diameter",
+        "8",
+        Patterns::Double(0, 256),
+        "Cells across the smallest grain diameter on grain surfaces "
+        "(the paper uses 6-16; 0 = no refinement around grains).");
+      prm.declare_entry("refinement",
+                        "adaptive",
+                        Patterns::Selection("adaptive|uniform"),
+                        "adaptive: refine only cells cut by grain surfaces "
+                        "(p4est keeps 2:1 balance); uniform: the whole mesh "
+                        "at that cell size (for comparisons).");
+      prm.declare_entry("max refinement level",
+                        "14",
+                        Patterns::Integer(0, 30),
+                        "Cap on the refinement level.");
+      prm.declare_entry("kelly cycles",
+                        "0",
+                        Patterns::Integer(0, 20),
+                        "Steady modes: further solve-estimate-refine cycles "
+                        "with the Kelly estimator of the velocity.");
+      prm.declare_entry("kelly refine fraction",
+                        "0.2",
+                        Patterns::Double(0, 1),
+                        "Fraction of cells refined per Kelly cycle.");
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    MeshParameters<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("mesh");
+      lower_corner = get_point<dim>(prm, "lower corner");
+      upper_corner = get_point<dim>(prm, "upper corner");
+      for (unsigned int d = 0; d < dim; ++d)
+        if (!(upper_corner[d] > lower_corner[d]))
+          throw_invalid_parameter("mesh/upper corner",
+                                  prm.get("upper corner"),
+                                  "each coordinate must exceed the lower "
+                                  "corner's (" +
+                                    prm.get("lower corner") + ")");
+      coarse_cells.clear();
+      for (const auto &s :
+           Utilities::split_string_list(prm.get("coarse cells"), ','))
+        coarse_cells.push_back(Utilities::string_to_int(s));
+      if (!coarse_cells.empty() && coarse_cells.size() != dim)
+        throw_invalid_parameter("mesh/coarse cells",
+                                prm.get("coarse cells"),
+                                "give " + std::to_string(dim) +
+                                  " numbers or leave it empty");
+      global_refinements    = prm.get_integer("global refinements");
+      cells_per_diameter    = prm.get_double("cells per diameter");
+      uniform_refinement    = (prm.get("refinement") == "uniform");
+      max_refinement_level  = prm.get_integer("max refinement level");
+      kelly_cycles          = prm.get_integer("kelly cycles");
+      kelly_refine_fraction = prm.get_double("kelly refine fraction");
+      prm.leave_subsection();
+    }
+
+    template struct MeshParameters<2>;
+    template struct MeshParameters<3>;
+  } // namespace core
+} // namespace softsand

@@ -1,0 +1,81 @@
+#include <softsand/core/parameter_tools.h>
+#include <softsand/core/parameters.h>
+
+#include <fstream>
+#include <regex>
+
+namespace softsand
+{
+  namespace core
+  {
+    template <int dim>
+    void
+    Parameters<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("dimension",
+                        "3",
+                        Patterns::Integer(2, 3),
+                        "Space dimension of the scene (2 or 3).");
+      SimulationControl::declare_parameters(prm);
+      MeshParameters<dim>::declare_parameters(prm);
+      dem::GrainParameters<dim>::declare_parameters(prm);
+      coupling::VoidFractionParameters::declare_parameters(prm);
+      fluid::FluidParameters::declare_parameters(prm);
+      fluid::SolverParameters::declare_parameters(prm);
+      fluid::BoundaryConditions<dim>::declare_parameters(prm);
+      io::OutputParameters::declare_parameters(prm);
+      postprocess::PostprocessingParameters::declare_parameters(prm);
+    }
+
+
+    template <int dim>
+    void
+    Parameters<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      simulation_control.parse_parameters(prm);
+      mesh.parse_parameters(prm);
+      grains.parse_parameters(prm);
+      void_fraction.parse_parameters(prm);
+      fluid.parse_parameters(prm);
+      fluid_solver.parse_parameters(prm);
+      boundary_conditions.parse_parameters(
+        prm, BoundingBox<dim>(std::make_pair(mesh.lower_corner, mesh.upper_corner)));
+      output.parse_parameters(prm);
+      postprocessing.parse_parameters(prm);
+      if (postprocessing.flow_axis >= dim)
+        throw_invalid_parameter("postprocessing/flow axis",
+                                "z",
+                                "a 2D scene flows along x or y");
+    }
+
+
+    unsigned int
+    read_dimension(const std::string &filename)
+    {
+      std::ifstream in(filename);
+      AssertThrow(in.good(),
+                  ExcMessage("Cannot open the parameter file <" + filename +
+                             ">: it does not exist or is not readable."));
+      const std::regex pattern(
+        R"(^\s*set\s+dimension\s*=\s*([^\s#]+)\s*(#.*)?$)");
+      std::string line;
+      unsigned int dim = 3;
+      while (std::getline(in, line))
+        {
+          std::smatch m;
+          if (std::regex_match(line, m, pattern))
+            {
+              const std::string v = m[1];
+              if (v == "2" || v == "3")
+                dim = std::stoi(v);
+              else
+                throw_invalid_parameter("dimension", v, "2 or 3");
+            }
+        }
+      return dim;
+    }
+
+    template struct Parameters<2>;
+    template struct Parameters<3>;
+  } // namespace core
+} // namespace softsand

@@ -1,0 +1,72 @@
+#include <softsand/core/parameter_tools.h>
+#include <softsand/core/simulation_control.h>
+
+namespace softsand
+{
+  namespace core
+  {
+    void
+    SimulationControl::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("simulation control");
+      prm.declare_entry(
+        "mode",
+        "steady stokes",
+        Patterns::Selection("steady stokes|steady navier stokes|transient"),
+        "steady stokes: one Stokes-Brinkman solve; steady navier stokes: "
+        "Newton or Picard iterations to the steady state of the penalized "
+        "scheme; transient: BDF time marching of the paper's Eq. (6).");
+      prm.declare_entry("time step",
+                        "1e-4",
+                        Patterns::Double(0),
+                        "Fluid time step (s). In the steady modes it is the "
+                        "penalty time scale in rho (1 + Theta (1 - vf)) "
+                        "(1 - vf) / dt.");
+      prm.declare_entry("end time",
+                        "1e-3",
+                        Patterns::Double(0),
+                        "End time of a transient run (s).");
+      prm.declare_entry("max time steps",
+                        "1000000",
+                        Patterns::Integer(1),
+                        "Upper bound on the number of time steps.");
+      prm.declare_entry("time scheme",
+                        "BDF2",
+                        Patterns::Selection("BDF1|BDF2"),
+                        "Time discretization of the transient mode.");
+      prm.declare_entry(
+        "steady state tolerance",
+        "0",
+        Patterns::Double(0),
+        "A transient run stops once ||u^{n+1} - u^n|| / ||u^{n+1}|| falls "
+        "below this value (dimensionless; 0 = run to the end time).");
+      prm.leave_subsection();
+    }
+
+
+    void
+    SimulationControl::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("simulation control");
+      const std::string m = prm.get("mode");
+      mode = (m == "steady stokes") ?
+               Mode::steady_stokes :
+               (m == "steady navier stokes" ? Mode::steady_navier_stokes :
+                                              Mode::transient);
+      time_step = prm.get_double("time step");
+      if (!(time_step > 0))
+        throw_invalid_parameter("simulation control/time step",
+                                prm.get("time step"),
+                                "the time step must be > 0 s");
+      end_time               = prm.get_double("end time");
+      max_time_steps         = prm.get_integer("max time steps");
+      bdf_order              = (prm.get("time scheme") == "BDF1") ? 1 : 2;
+      steady_state_tolerance = prm.get_double("steady state tolerance");
+      if (mode == Mode::transient && !(end_time > 0))
+        throw_invalid_parameter("simulation control/end time",
+                                prm.get("end time"),
+                                "a transient run needs an end time > 0 s");
+      prm.leave_subsection();
+    }
+  } // namespace core
+} // namespace softsand

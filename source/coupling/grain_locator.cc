@@ -1,0 +1,197 @@
+#include <softsand/coupling/grain_locator.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace softsand
+{
+  namespace coupling
+  {
+    template <int dim>
+    GrainLocator<dim>::GrainLocator(const std::vector<dem::Grain<dim>> &grains)
+      : grain_list(grains)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        n_bins[d] = 1;
+      if (grains.empty())
+        {
+          bins.resize(1);
+          return;
+        }
+      Point<dim> lo = grains[0].center, hi = grains[0].center;
+      double     r_max = 0;
+      min_grain_diameter = std::numeric_limits<double>::max();
+      for (const auto &g : grains)
+        {
+          r_max              = std::max(r_max, g.radius);
+          min_grain_diameter = std::min(min_grain_diameter, g.diameter());
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              lo[d] = std::min(lo[d], g.center[d] - g.radius);
+              hi[d] = std::max(hi[d], g.center[d] + g.radius);
+            }
+        }
+      bin_size = 2 * r_max;
+      origin   = lo;
+      // Keep the grid to a few million bins even for very spread-out sets.
+      std::size_t total = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          n_bins[d] = std::max(1, int(std::ceil((hi[d] - lo[d]) / bin_size)));
+          total *= n_bins[d];
+        }
+      while (total > 4000000)
+        {
+          bin_size *= 2;
+          total = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              n_bins[d] =
+                std::max(1, int(std::ceil((hi[d] - lo[d]) / bin_size)));
+              total *= n_bins[d];
+            }
+        }
+      bins.resize(total);
+      for (unsigned int i = 0; i < grains.size(); ++i)
+        bins[flat_index(bin_of(grains[i].center))].push_back(i);
+    }
+
+
+    template <int dim>
+    std::array<int, dim>
+    GrainLocator<dim>::bin_of(const Point<dim> &x) const
+    {
+      std::array<int, dim> b;
+      for (unsigned int d = 0; d < dim; ++d)
+        b[d] = std::clamp(int(std::floor((x[d] - origin[d]) / bin_size)),
+                          0,
+                          n_bins[d] - 1);
+      return b;
+    }
+
+
+    template <int dim>
+    unsigned int
+    GrainLocator<dim>::flat_index(const std::array<int, dim> &b) const
+    {
+      unsigned int i = 0;
+      for (int d = dim - 1; d >= 0; --d)
+        i = i * n_bins[d] + b[d];
+      return i;
+    }
+
+
+    template <int dim>
+    void
+    GrainLocator<dim>::grains_near_box(const BoundingBox<dim>    &box,
+                                       std::vector<unsigned int> &indices) const
+    {
+      indices.clear();
+      if (grain_list.empty())
+        return;
+      // A grain of radius <= bin_size/2 centred in bin b reaches at most one
+      // bin further, so scan the box's bins grown by one.
+      Point<dim> lo = box.get_boundary_points().first,
+                 hi = box.get_boundary_points().second;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          // Boxes entirely beyond the grains' extent meet none.
+          if (hi[d] < origin[d] - bin_size ||
+              lo[d] > origin[d] + (n_bins[d] + 1) * bin_size)
+            return;
+        }
+      std::array<int, dim> b0 = bin_of(lo), b1 = bin_of(hi);
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          b0[d] = std::max(0, b0[d] - 1);
+          b1[d] = std::min(n_bins[d] - 1, b1[d] + 1);
+        }
+      std::array<int, dim> b = b0;
+      while (true)
+        {
+          for (const unsigned int i : bins[flat_index(b)])
+            {
+              const auto &g  = grain_list[i];
+              bool        ok = true;
+              for (unsigned int d = 0; d < dim && ok; ++d)
+                ok = (g.center[d] + g.radius >= lo[d]) &&
+                     (g.center[d] - g.radius <= hi[d]);
+              if (ok)
+                indices.push_back(i);
+            }
+          unsigned int d = 0;
+          for (; d < dim; ++d)
+            {
+              if (++b[d] <= b1[d])
+                break;
+              b[d] = b0[d];
+            }
+          if (d == dim)
+            break;
+        }
+    }
+
+
+    template <int dim>
+    int
+    GrainLocator<dim>::containing_grain(const Point<dim> &x) const
+    {
+      thread_local std::vector<unsigned int> near;
+      grains_near_box(BoundingBox<dim>(std::make_pair(x, x)), near);
+      int    best       = -1;
+      double best_depth = 0;
+      for (const unsigned int i : near)
+        {
+          const auto  &g     = grain_list[i];
+          const double depth = g.radius - x.distance(g.center);
+          if (depth > best_depth || (best < 0 && depth >= 0))
+            {
+              best       = i;
+              best_depth = depth;
+            }
+        }
+      return best;
+    }
+
+
+    template <int dim>
+    typename GrainLocator<dim>::BoxRelation
+    GrainLocator<dim>::classify_box(const BoundingBox<dim> &box,
+                                    int                    &grain_index) const
+    {
+      thread_local std::vector<unsigned int> near;
+      grains_near_box(box, near);
+      grain_index      = -1;
+      bool cut         = false;
+      const auto &lo   = box.get_boundary_points().first;
+      const auto &hi   = box.get_boundary_points().second;
+      for (const unsigned int i : near)
+        {
+          const auto &g = grain_list[i];
+          // Nearest and farthest distances from the centre to the box.
+          double near2 = 0, far2 = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double c  = g.center[d];
+              const double dn = std::max({lo[d] - c, 0., c - hi[d]});
+              const double df = std::max(std::abs(c - lo[d]), std::abs(c - hi[d]));
+              near2 += dn * dn;
+              far2 += df * df;
+            }
+          const double r2 = g.radius * g.radius;
+          if (far2 <= r2)
+            {
+              grain_index = i;
+              return BoxRelation::inside_one;
+            }
+          if (near2 < r2)
+            cut = true;
+        }
+      return cut ? BoxRelation::cut : BoxRelation::outside_all;
+    }
+
+    template class GrainLocator<2>;
+    template class GrainLocator<3>;
+  } // namespace coupling
+} // namespace softsand

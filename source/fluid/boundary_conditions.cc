@@ -1,0 +1,233 @@
+#include <softsand/core/parameter_tools.h>
+#include <softsand/fluid/boundary_conditions.h>
+
+#include <deal.II/base/function_parser.h>
+
+#include <deal.II/fe/component_mask.h>
+#include <deal.II/fe/fe_values_extractors.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    template <int dim>
+    std::string
+    BoundaryConditions<dim>::face_name(const unsigned int id)
+    {
+      static const char *names[] = {
+        "x min", "x max", "y min", "y max", "z min", "z max"};
+      return names[id];
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("boundary conditions");
+      for (unsigned int b = 0; b < n_faces; ++b)
+        {
+          prm.enter_subsection(face_name(b));
+          prm.declare_entry(
+            "type",
+            "no slip",
+            Patterns::Selection("no slip|velocity|flow rate|function|"
+                                "pressure|moving wall|symmetry"),
+            "no slip: u = 0; velocity: u = the given vector; flow rate: a "
+            "uniform inflow normal to the face carrying the given flow "
+            "rate; function: u = the given expressions; pressure: "
+            "do-nothing outlet/inlet with the given pressure; moving wall: "
+            "the wall moves with the given velocity; symmetry: u.n = 0, no "
+            "tangential stress.");
+          core::declare_double_list(prm,
+                                    "velocity",
+                                    dim == 2 ? "0, 0" : "0, 0, 0",
+                                    "velocity / moving wall: velocity (m/s).");
+          prm.declare_entry("flow rate",
+                            "0",
+                            Patterns::Double(),
+                            "flow rate: volumetric flow rate into the "
+                            "domain (m^3/s; m^2/s in 2D).");
+          prm.declare_entry("function",
+                            dim == 2 ? "0; 0" : "0; 0; 0",
+                            Patterns::Anything(),
+                            "function: velocity components in x, y, z, t "
+                            "separated by ';' (m/s).");
+          prm.declare_entry("pressure",
+                            "0",
+                            Patterns::Double(),
+                            "pressure: imposed pressure (Pa).");
+          prm.leave_subsection();
+        }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::parse_parameters(ParameterHandler       &prm,
+                                              const BoundingBox<dim> &box)
+    {
+      domain = box;
+      prm.enter_subsection("boundary conditions");
+      for (unsigned int b = 0; b < n_faces; ++b)
+        {
+          prm.enter_subsection(face_name(b));
+          Face             &f = faces[b];
+          const std::string t = prm.get("type");
+          f.type = t == "no slip"     ? Type::no_slip :
+                   t == "velocity"    ? Type::velocity :
+                   t == "flow rate"   ? Type::flow_rate :
+                   t == "function"    ? Type::function :
+                   t == "pressure"    ? Type::pressure :
+                   t == "moving wall" ? Type::moving_wall :
+                                        Type::symmetry;
+          f.velocity  = core::get_tensor<dim>(prm, "velocity");
+          f.flow_rate = prm.get_double("flow rate");
+          f.function  = prm.get("function");
+          f.pressure  = prm.get_double("pressure");
+          if (f.type == Type::function)
+            {
+              try
+                {
+                  FunctionParser<dim> test(dim);
+                  test.initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
+                                  f.function,
+                                  core::function_constants(),
+                                  true);
+                  // muparser compiles lazily: evaluate once to check.
+                  Vector<double> value(dim);
+                  test.vector_value(Point<dim>(), value);
+                }
+              catch (...)
+                {
+                  core::throw_invalid_parameter(
+                    "boundary conditions/" + face_name(b) + "/function",
+                    f.function,
+                    std::to_string(dim) +
+                      " expressions in x, y, z, t separated by ';'");
+                }
+            }
+          if (f.type == Type::flow_rate)
+            {
+              // Uniform velocity into the domain through this face.
+              const unsigned int axis = b / 2;
+              const double       sign = (b % 2 == 0) ? 1. : -1.;
+              f.velocity              = Tensor<1, dim>();
+              f.velocity[axis]        = sign * f.flow_rate / face_area(b);
+            }
+          if (f.type == Type::moving_wall)
+            {
+              const unsigned int axis = b / 2;
+              if (std::abs(f.velocity[axis]) > 0)
+                core::throw_invalid_parameter(
+                  "boundary conditions/" + face_name(b) + "/velocity",
+                  prm.get("velocity"),
+                  "a moving wall slides in its own plane: the normal "
+                  "component must be 0 (use 'velocity' for inflow)");
+            }
+          prm.leave_subsection();
+        }
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    double
+    BoundaryConditions<dim>::face_area(const unsigned int b) const
+    {
+      double area = 1;
+      for (unsigned int d = 0; d < dim; ++d)
+        if (d != b / 2)
+          area *= domain.side_length(d);
+      return area;
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::make_velocity_constraints(
+      const DoFHandler<dim>     &dof_handler,
+      AffineConstraints<double> &constraints,
+      const double               time) const
+    {
+      const FiniteElement<dim> &fe = dof_handler.get_fe();
+      const FEValuesExtractors::Vector velocities(0);
+      const ComponentMask velocity_mask = fe.component_mask(velocities);
+
+      for (unsigned int b = 0; b < n_faces; ++b)
+        {
+          const Face &f = faces[b];
+          switch (f.type)
+            {
+              case Type::pressure:
+                break;
+              case Type::symmetry:
+                {
+                  std::vector<bool> mask(dim + 1, false);
+                  mask[b / 2] = true;
+                  VectorTools::interpolate_boundary_values(
+                    dof_handler,
+                    b,
+                    Functions::ZeroFunction<dim>(dim + 1),
+                    constraints,
+                    ComponentMask(mask));
+                  break;
+                }
+              case Type::function:
+                {
+                  FunctionParser<dim> u(dim + 1);
+                  u.initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
+                               f.function + "; 0",
+                               core::function_constants(),
+                               true);
+                  u.set_time(time);
+                  VectorTools::interpolate_boundary_values(
+                    dof_handler, b, u, constraints, velocity_mask);
+                  break;
+                }
+              default:
+                {
+                  Vector<double> value(dim + 1);
+                  if (f.type != Type::no_slip)
+                    for (unsigned int d = 0; d < dim; ++d)
+                      value[d] = f.velocity[d];
+                  VectorTools::interpolate_boundary_values(
+                    dof_handler,
+                    b,
+                    Functions::ConstantFunction<dim>(value),
+                    constraints,
+                    velocity_mask);
+                }
+            }
+        }
+    }
+
+
+    template <int dim>
+    bool
+    BoundaryConditions<dim>::has_pressure_face() const
+    {
+      for (const auto &f : faces)
+        if (f.type == Type::pressure)
+          return true;
+      return false;
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    BoundaryConditions<dim>::inflow_velocity() const
+    {
+      for (const auto &f : faces)
+        if (f.type == Type::velocity || f.type == Type::flow_rate)
+          return f.velocity;
+      return {};
+    }
+
+    template class BoundaryConditions<2>;
+    template class BoundaryConditions<3>;
+  } // namespace fluid
+} // namespace softsand

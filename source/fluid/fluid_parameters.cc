@@ -1,0 +1,117 @@
+#include <softsand/core/parameter_tools.h>
+#include <softsand/fluid/fluid_parameters.h>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    void
+    FluidParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("fluid");
+      prm.declare_entry("density",
+                        "1000",
+                        Patterns::Double(0),
+                        "Fluid density rho (kg/m^3).");
+      prm.declare_entry("viscosity",
+                        "1e-3",
+                        Patterns::Double(0),
+                        "Dynamic viscosity mu (Pa s).");
+      prm.declare_entry("theta",
+                        "1e6",
+                        Patterns::Double(0, 1e16),
+                        "Penalization Theta (dimensionless): density "
+                        "rho (1 + Theta (1 - vf)) where grains cover the "
+                        "fluid (the paper's Eq. 6; converged by 1e6).");
+      prm.declare_entry("body force",
+                        "0; 0; 0",
+                        Patterns::Anything(),
+                        "Body force per unit volume (N/m^3): one expression "
+                        "in x, y, z, t per component, separated by ';'.");
+      prm.leave_subsection();
+    }
+
+
+    void
+    FluidParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("fluid");
+      density   = prm.get_double("density");
+      viscosity = prm.get_double("viscosity");
+      theta     = prm.get_double("theta");
+      body_force = prm.get("body force");
+      if (!(density > 0))
+        core::throw_invalid_parameter("fluid/density",
+                                      prm.get("density"),
+                                      "the density must be > 0 kg/m^3");
+      if (!(viscosity > 0))
+        core::throw_invalid_parameter("fluid/viscosity",
+                                      prm.get("viscosity"),
+                                      "the viscosity must be > 0 Pa s");
+      prm.leave_subsection();
+    }
+
+
+    void
+    SolverParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("fluid solver");
+      prm.declare_entry("nonlinear method",
+                        "newton",
+                        Patterns::Selection("newton|picard"),
+                        "Linearization of the steady convection term.");
+      prm.declare_entry("nonlinear tolerance",
+                        "1e-8",
+                        Patterns::Double(0, 1),
+                        "Steady Navier-Stokes stops when ||u_k+1 - u_k|| / "
+                        "||u_k+1|| is below this (dimensionless).");
+      prm.declare_entry("max nonlinear iterations",
+                        "30",
+                        Patterns::Integer(1),
+                        "Upper bound on Newton/Picard iterations.");
+      prm.declare_entry("linear tolerance",
+                        "1e-8",
+                        Patterns::Double(0, 1),
+                        "FGMRES stops at this residual relative to the "
+                        "right-hand side (dimensionless).");
+      prm.declare_entry("max linear iterations",
+                        "1000",
+                        Patterns::Integer(1),
+                        "Upper bound on FGMRES iterations per solve.");
+      prm.declare_entry(
+        "schur complement",
+        "cahouet chabard",
+        Patterns::Selection("cahouet chabard|weighted mass|mass"),
+        "Pressure Schur complement approximation: cahouet chabard = "
+        "mu M_p^-1 + (-div (1/beta) grad)^-1 with beta the cell's "
+        "penalty/inertia coefficient (robust in Theta); weighted mass = "
+        "mass matrix weighted by 1/(mu + beta h^2); mass = 1/mu mass "
+        "matrix (plain Stokes).");
+      prm.declare_entry("velocity amg sweeps",
+                        "2",
+                        Patterns::Integer(1, 10),
+                        "Smoother sweeps of the velocity-block AMG.");
+      prm.leave_subsection();
+    }
+
+
+    void
+    SolverParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("fluid solver");
+      nonlinear_method = prm.get("nonlinear method") == "newton" ?
+                           Nonlinear::newton :
+                           Nonlinear::picard;
+      nonlinear_tolerance      = prm.get_double("nonlinear tolerance");
+      max_nonlinear_iterations = prm.get_integer("max nonlinear iterations");
+      linear_tolerance         = prm.get_double("linear tolerance");
+      max_linear_iterations    = prm.get_integer("max linear iterations");
+      const std::string s      = prm.get("schur complement");
+      schur = s == "cahouet chabard" ? Schur::cahouet_chabard :
+              s == "weighted mass"   ? Schur::weighted_mass :
+                                       Schur::mass;
+      velocity_amg_sweeps = prm.get_integer("velocity amg sweeps");
+      prm.leave_subsection();
+    }
+  } // namespace fluid
+} // namespace softsand

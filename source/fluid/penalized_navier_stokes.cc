@@ -1,0 +1,771 @@
+#include <softsand/fluid/block_schur_preconditioner.h>
+#include <softsand/fluid/penalized_navier_stokes.h>
+#include <softsand/core/parameter_tools.h>
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_renumbering.h>
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/lac/block_sparsity_pattern.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/sparsity_tools.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    template <int dim>
+    PenalizedNavierStokes<dim>::PenalizedNavierStokes(
+      parallel::distributed::Triangulation<dim> &tria,
+      const FluidParameters                     &fluid_parameters,
+      const SolverParameters                    &solver_parameters,
+      const BoundaryConditions<dim>             &boundary_conditions,
+      ConditionalOStream                        &pcout,
+      TimerOutput                               &timer)
+      : mpi_communicator(tria.get_communicator())
+      , triangulation(tria)
+      , fluid_parameters(fluid_parameters)
+      , solver_parameters(solver_parameters)
+      , boundary_conditions(boundary_conditions)
+      , pcout(pcout)
+      , timer(timer)
+      , fe(FE_Q<dim>(2), dim, FE_Q<dim>(1), 1)
+      , dof_handler(tria)
+    {
+      body_force = std::make_unique<FunctionParser<dim>>(dim);
+      std::string expr = fluid_parameters.body_force;
+      // Accept a 3-component default in 2D by dropping the z component.
+      auto parts = Utilities::split_string_list(expr, ';');
+      if (dim == 2 && parts.size() == 3)
+        expr = parts[0] + ";" + parts[1];
+      try
+        {
+          body_force->initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
+                                 expr,
+                                 core::function_constants(),
+                                 true);
+          Vector<double> value(dim);
+          body_force->vector_value(Point<dim>(), value);
+        }
+      catch (...)
+        {
+          AssertThrow(false,
+                      ExcMessage("Parameter <fluid/body force> = <" +
+                                 fluid_parameters.body_force +
+                                 "> is invalid: give " + std::to_string(dim) +
+                                 " expressions in x, y, z, t separated by "
+                                 "';'."));
+        }
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::set_solid_field(const SolidField<dim> *solids)
+    {
+      solid_field = solids;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::set_time(const double t)
+    {
+      time = t;
+      body_force->set_time(t);
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::make_constraints()
+    {
+      const IndexSet relevant =
+        DoFTools::extract_locally_relevant_dofs(dof_handler);
+      constraints.clear();
+      constraints.reinit(relevant);
+      DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+      boundary_conditions.make_velocity_constraints(dof_handler,
+                                                    constraints,
+                                                    time);
+      constraints.close();
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::setup_dofs()
+    {
+      TimerOutput::Scope t(timer, "fluid: setup dofs");
+      dof_handler.distribute_dofs(fe);
+      std::vector<unsigned int> block_component(dim + 1, 0);
+      block_component[dim] = 1;
+      DoFRenumbering::component_wise(dof_handler, block_component);
+      const std::vector<types::global_dof_index> dofs_per_block =
+        DoFTools::count_dofs_per_fe_block(dof_handler, block_component);
+      const types::global_dof_index n_u = dofs_per_block[0],
+                                    n_p = dofs_per_block[1];
+
+      const IndexSet &owned    = dof_handler.locally_owned_dofs();
+      const IndexSet  relevant =
+        DoFTools::extract_locally_relevant_dofs(dof_handler);
+      owned_partitioning    = {owned.get_view(0, n_u),
+                               owned.get_view(n_u, n_u + n_p)};
+      relevant_partitioning = {relevant.get_view(0, n_u),
+                               relevant.get_view(n_u, n_u + n_p)};
+
+      make_constraints();
+
+      {
+        system_matrix.clear();
+        Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
+        // Velocity components couple through convection (Newton) terms.
+        for (unsigned int c = 0; c < dim + 1; ++c)
+          for (unsigned int d = 0; d < dim + 1; ++d)
+            coupling[c][d] = (c == dim && d == dim) ? DoFTools::none :
+                                                      DoFTools::always;
+        BlockDynamicSparsityPattern dsp(relevant_partitioning);
+        DoFTools::make_sparsity_pattern(
+          dof_handler, coupling, dsp, constraints, false);
+        SparsityTools::distribute_sparsity_pattern(dsp,
+                                                   owned,
+                                                   mpi_communicator,
+                                                   relevant);
+        system_matrix.reinit(owned_partitioning, dsp, mpi_communicator);
+      }
+      {
+        pressure_mass_matrix.clear();
+        pressure_laplace_matrix.clear();
+        Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
+        for (unsigned int c = 0; c < dim + 1; ++c)
+          for (unsigned int d = 0; d < dim + 1; ++d)
+            coupling[c][d] = (c == dim && d == dim) ? DoFTools::always :
+                                                      DoFTools::none;
+        BlockDynamicSparsityPattern dsp(relevant_partitioning);
+        DoFTools::make_sparsity_pattern(
+          dof_handler, coupling, dsp, constraints, false);
+        SparsityTools::distribute_sparsity_pattern(dsp,
+                                                   owned,
+                                                   mpi_communicator,
+                                                   relevant);
+        pressure_mass_matrix.reinit(owned_partitioning, dsp, mpi_communicator);
+        pressure_laplace_matrix.reinit(owned_partitioning,
+                                       dsp,
+                                       mpi_communicator);
+      }
+
+      solution.reinit(owned_partitioning,
+                      relevant_partitioning,
+                      mpi_communicator);
+      old_solution.reinit(solution);
+      older_solution.reinit(solution);
+      system_rhs.reinit(owned_partitioning, mpi_communicator);
+      steps_since_start = 0;
+    }
+
+
+    template <int dim>
+    double
+    PenalizedNavierStokes<dim>::brinkman_coefficient(
+      const double vf,
+      const double penalty_time_step) const
+    {
+      const double solid = 1. - vf;
+      return fluid_parameters.density *
+             (1. + fluid_parameters.theta * solid) * solid / penalty_time_step;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::assemble(const Assembly     kind,
+                                         const double       dt,
+                                         const unsigned int bdf_order)
+    {
+      TimerOutput::Scope t(timer, "fluid: assemble");
+      system_matrix         = 0;
+      pressure_mass_matrix  = 0;
+      pressure_laplace_matrix = 0;
+      system_rhs            = 0;
+
+      const double rho = fluid_parameters.density;
+      const double mu  = fluid_parameters.viscosity;
+      const SolverParameters::Schur schur = solver_parameters.schur;
+
+      // The pressure-Laplacian coefficient 1/beta is capped where beta -> 0
+      // (steady pure fluid) by the viscous scale mu / L^2 of the domain.
+      double domain_size = 0;
+      {
+        const auto box = GridTools::compute_bounding_box(triangulation);
+        for (unsigned int d = 0; d < dim; ++d)
+          domain_size = std::max(domain_size, box.side_length(d));
+      }
+      const double beta_floor = mu / (domain_size * domain_size);
+
+      const QGauss<dim>     quadrature(fe.degree + 1);
+      const QGauss<dim - 1> face_quadrature(fe.degree + 1);
+      FEValues<dim>         fe_values(fe,
+                              quadrature,
+                              update_values | update_gradients |
+                                update_quadrature_points | update_JxW_values);
+      FEFaceValues<dim>     fe_face_values(fe,
+                                       face_quadrature,
+                                       update_values | update_normal_vectors |
+                                         update_JxW_values);
+      const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
+      const unsigned int n_q           = quadrature.size();
+      const FEValuesExtractors::Vector velocities(0);
+      const FEValuesExtractors::Scalar pressure(dim);
+
+      FullMatrix<double> local_matrix(dofs_per_cell, dofs_per_cell);
+      FullMatrix<double> local_mass(dofs_per_cell, dofs_per_cell);
+      FullMatrix<double> local_laplace(dofs_per_cell, dofs_per_cell);
+      Vector<double>     local_rhs(dofs_per_cell);
+      std::vector<types::global_dof_index> dof_indices(dofs_per_cell);
+
+      std::vector<Tensor<1, dim>> phi_u(dofs_per_cell);
+      std::vector<Tensor<2, dim>> grad_phi_u(dofs_per_cell);
+      std::vector<double>         div_phi_u(dofs_per_cell);
+      std::vector<double>         phi_p(dofs_per_cell);
+      std::vector<Tensor<1, dim>> grad_phi_p(dofs_per_cell);
+
+      std::vector<Tensor<1, dim>> u_current(n_q), u_old(n_q), u_older(n_q);
+      std::vector<Tensor<2, dim>> grad_u_current(n_q), grad_u_old(n_q),
+        grad_u_older(n_q);
+      std::vector<double>         void_fraction(n_q, 1.);
+      std::vector<Tensor<1, dim>> solid_velocity(n_q);
+      std::vector<int>            solid_index(n_q, -1);
+      Vector<double>              force_value(dim);
+
+      const bool first_order = (bdf_order == 1);
+
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            local_matrix  = 0;
+            local_mass    = 0;
+            local_laplace = 0;
+            local_rhs     = 0;
+
+            if (solid_field != nullptr)
+              solid_field->evaluate(
+                *cell,
+                fe_values.get_quadrature_points(),
+                void_fraction,
+                solid_velocity,
+                solid_index);
+            else
+              void_fraction.assign(n_q, 1.);
+
+            if (kind == Assembly::steady_picard ||
+                kind == Assembly::steady_newton)
+              {
+                fe_values[velocities].get_function_values(solution, u_current);
+                fe_values[velocities].get_function_gradients(solution,
+                                                             grad_u_current);
+              }
+            if (kind == Assembly::transient)
+              {
+                fe_values[velocities].get_function_values(old_solution, u_old);
+                fe_values[velocities].get_function_gradients(old_solution,
+                                                             grad_u_old);
+                if (!first_order)
+                  {
+                    fe_values[velocities].get_function_values(older_solution,
+                                                              u_older);
+                    fe_values[velocities].get_function_gradients(
+                      older_solution, grad_u_older);
+                  }
+              }
+
+            const double h = cell->diameter() / std::sqrt(double(dim));
+
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                const double JxW = fe_values.JxW(q);
+                for (unsigned int k = 0; k < dofs_per_cell; ++k)
+                  {
+                    phi_u[k]      = fe_values[velocities].value(k, q);
+                    grad_phi_u[k] = fe_values[velocities].gradient(k, q);
+                    div_phi_u[k]  = fe_values[velocities].divergence(k, q);
+                    phi_p[k]      = fe_values[pressure].value(k, q);
+                    grad_phi_p[k] = fe_values[pressure].gradient(k, q);
+                  }
+
+                const double vf    = void_fraction[q];
+                const double solid = 1. - vf;
+
+                // Zeroth-order coefficient (mass or Brinkman) and the vector
+                // it multiplies on the right-hand side.
+                double         beta = 0;
+                Tensor<1, dim> beta_rhs;
+                // Advecting velocity and its divergence (skew-symmetric
+                // Temam term keeps the Oseen step energy-stable).
+                Tensor<1, dim> w;
+                double         div_w      = 0;
+                bool           convection = false;
+                bool           newton     = false;
+                Tensor<2, dim> grad_w;
+
+                if (kind == Assembly::transient)
+                  {
+                    const double rho_star =
+                      rho * (1. + fluid_parameters.theta * solid);
+                    const Tensor<1, dim> u_tilde_old =
+                      vf * u_old[q] + solid * solid_velocity[q];
+                    if (first_order)
+                      {
+                        beta     = rho_star / dt;
+                        beta_rhs = beta * u_tilde_old;
+                        w        = u_old[q];
+                        div_w    = trace(grad_u_old[q]);
+                      }
+                    else
+                      {
+                        const Tensor<1, dim> u_tilde_older =
+                          vf * u_older[q] + solid * solid_velocity[q];
+                        beta = 1.5 * rho_star / dt;
+                        beta_rhs =
+                          rho_star / dt * (2. * u_tilde_old - 0.5 * u_tilde_older);
+                        w     = 2. * u_old[q] - u_older[q];
+                        div_w = 2. * trace(grad_u_old[q]) - trace(grad_u_older[q]);
+                      }
+                    convection = true;
+                  }
+                else
+                  {
+                    beta     = brinkman_coefficient(vf, dt);
+                    beta_rhs = beta * solid_velocity[q];
+                    if (kind != Assembly::steady_stokes)
+                      {
+                        w          = u_current[q];
+                        grad_w     = grad_u_current[q];
+                        convection = true;
+                        newton     = (kind == Assembly::steady_newton);
+                      }
+                  }
+
+                body_force->vector_value(fe_values.quadrature_point(q),
+                                         force_value);
+                Tensor<1, dim> f;
+                for (unsigned int d = 0; d < dim; ++d)
+                  f[d] = force_value[d];
+                if (newton)
+                  f += rho * (grad_w * w); // rho (u_k . grad) u_k
+
+                // Schur complement approximation coefficients (per point).
+                double mass_weight = 1. / mu;
+                if (schur == SolverParameters::Schur::weighted_mass)
+                  mass_weight = 1. / (mu + beta * h * h);
+                const double laplace_weight =
+                  (schur == SolverParameters::Schur::cahouet_chabard) ?
+                    1. / (beta + beta_floor) :
+                    0.;
+
+                for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                  {
+                    const Tensor<1, dim> conv_test = phi_u[i];
+                    for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                      {
+                        double a = mu * scalar_product(grad_phi_u[i],
+                                                       grad_phi_u[j]) +
+                                   beta * (phi_u[i] * phi_u[j]) -
+                                   div_phi_u[i] * phi_p[j] -
+                                   phi_p[i] * div_phi_u[j];
+                        if (convection)
+                          {
+                            a += rho * (conv_test * (grad_phi_u[j] * w));
+                            if (kind == Assembly::transient)
+                              a += 0.5 * rho * div_w * (conv_test * phi_u[j]);
+                            if (newton)
+                              a += rho * (conv_test * (grad_w * phi_u[j]));
+                          }
+                        local_matrix(i, j) += a * JxW;
+                        local_mass(i, j) +=
+                          mass_weight * phi_p[i] * phi_p[j] * JxW;
+                        local_laplace(i, j) +=
+                          laplace_weight * (grad_phi_p[i] * grad_phi_p[j]) *
+                          JxW;
+                      }
+                    local_rhs(i) += (f + beta_rhs) * phi_u[i] * JxW;
+                  }
+              }
+
+            // Pressure faces: do-nothing condition mu du/dn - p n = -p_b n.
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary() &&
+                  boundary_conditions.face(face->boundary_id()).type ==
+                    BoundaryConditions<dim>::Type::pressure)
+                {
+                  fe_face_values.reinit(cell, face);
+                  const double p_b =
+                    boundary_conditions.face(face->boundary_id()).pressure;
+                  for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                    for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                      local_rhs(i) -=
+                        p_b *
+                        (fe_face_values[velocities].value(i, q) *
+                         fe_face_values.normal_vector(q)) *
+                        fe_face_values.JxW(q);
+                  // Weak p = 0 in the pressure Laplacian of the Schur
+                  // approximation: the Schur complement sees a Dirichlet
+                  // condition where the traction is prescribed.
+                  if (schur == SolverParameters::Schur::cahouet_chabard)
+                    {
+                      const double penalty = 1. / (beta_floor * h);
+                      for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                        for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                          for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                            local_laplace(i, j) +=
+                              penalty *
+                              fe_face_values[pressure].value(i, q) *
+                              fe_face_values[pressure].value(j, q) *
+                              fe_face_values.JxW(q);
+                    }
+                }
+
+            cell->get_dof_indices(dof_indices);
+            constraints.distribute_local_to_global(
+              local_matrix, local_rhs, dof_indices, system_matrix, system_rhs);
+            constraints.distribute_local_to_global(local_mass,
+                                                   dof_indices,
+                                                   pressure_mass_matrix);
+            if (schur == SolverParameters::Schur::cahouet_chabard)
+              constraints.distribute_local_to_global(local_laplace,
+                                                     dof_indices,
+                                                     pressure_laplace_matrix);
+          }
+
+      system_matrix.compress(VectorOperation::add);
+      pressure_mass_matrix.compress(VectorOperation::add);
+      pressure_laplace_matrix.compress(VectorOperation::add);
+      system_rhs.compress(VectorOperation::add);
+    }
+
+
+    template <int dim>
+    unsigned int
+    PenalizedNavierStokes<dim>::solve_linear(const bool convection)
+    {
+      TimerOutput::Scope t(timer, "fluid: solve");
+
+      std::vector<std::vector<bool>> constant_modes;
+      const FEValuesExtractors::Vector velocities(0);
+      DoFTools::extract_constant_modes(dof_handler,
+                                       fe.component_mask(velocities),
+                                       constant_modes);
+      BlockSchurPreconditioner preconditioner(
+        system_matrix,
+        pressure_mass_matrix,
+        solver_parameters.schur == SolverParameters::Schur::cahouet_chabard ?
+          &pressure_laplace_matrix :
+          nullptr,
+        constant_modes,
+        convection,
+        solver_parameters.velocity_amg_sweeps);
+
+      BlockVector x(owned_partitioning, mpi_communicator);
+      x = solution; // start from the previous state: cheap re-solves
+      constraints.set_zero(x);
+
+      if (!boundary_conditions.has_pressure_face())
+        {
+          // Only velocity conditions: the pressure constant is a null vector
+          // of the (transposed) system, and interpolated boundary data make
+          // the continuity rows slightly inconsistent (net flux != 0 at the
+          // discrete level). Project the right-hand side onto the range.
+          double       sum   = 0;
+          unsigned int count = 0;
+          for (const auto i : owned_partitioning[1])
+            {
+              const auto global = i + owned_partitioning[0].size();
+              if (!constraints.is_constrained(global))
+                {
+                  sum += system_rhs(global);
+                  ++count;
+                }
+            }
+          sum   = Utilities::MPI::sum(sum, mpi_communicator);
+          count = Utilities::MPI::sum(count, mpi_communicator);
+          for (const auto i : owned_partitioning[1])
+            {
+              const auto global = i + owned_partitioning[0].size();
+              if (!constraints.is_constrained(global))
+                system_rhs(global) -= sum / count;
+            }
+          system_rhs.compress(VectorOperation::insert);
+        }
+
+      const double rhs_norm = system_rhs.l2_norm();
+      SolverControl control(solver_parameters.max_linear_iterations,
+                            std::max(solver_parameters.linear_tolerance *
+                                       rhs_norm,
+                                     1e-300),
+                            false,
+                            false);
+      // A well-posed singular system (no pressure face) is consistent:
+      // FGMRES converges in the complement of the constant pressure.
+      SolverFGMRES<BlockVector> solver(
+        control, SolverFGMRES<BlockVector>::AdditionalData(100));
+      try
+        {
+          if (rhs_norm > 0)
+            solver.solve(system_matrix, x, system_rhs, preconditioner);
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          AssertThrow(false,
+                      ExcMessage(
+                        "The fluid solver (FGMRES) did not converge in " +
+                        std::to_string(e.last_step) +
+                        " iterations (residual " +
+                        Utilities::to_string(e.last_residual) + " vs " +
+                        Utilities::to_string(control.tolerance()) +
+                        "). Raise 'fluid solver/max linear iterations' or "
+                        "check the scene (time step, theta, mesh)."));
+        }
+      constraints.distribute(x);
+
+      if (!boundary_conditions.has_pressure_face())
+        {
+          // Pressure is defined up to a constant: report zero mean.
+          solution = x;
+          const double mean = VectorTools::compute_mean_value(
+            dof_handler, QGauss<dim>(fe.degree + 1), solution, dim);
+          x.block(1).add(-mean);
+        }
+      solution = x;
+
+      AssertThrow(std::isfinite(x.l2_norm()),
+                  ExcMessage("The fluid solution is not finite (NaN or Inf)."));
+      statistics.linear_iterations = control.last_step();
+      statistics.total_linear_iterations += control.last_step();
+      return control.last_step();
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::solve_steady_stokes(const double dt)
+    {
+      statistics       = SolveStatistics();
+      last_time_step   = dt;
+      last_was_steady  = true;
+      make_constraints();
+      assemble(Assembly::steady_stokes, dt, 1);
+      solve_linear(false);
+      statistics.nonlinear_iterations = 1;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::solve_steady_navier_stokes(const double dt)
+    {
+      statistics      = SolveStatistics();
+      last_time_step  = dt;
+      last_was_steady = true;
+      make_constraints();
+      // A Stokes solve gives the first iterate.
+      assemble(Assembly::steady_stokes, dt, 1);
+      solve_linear(false);
+      const Assembly kind =
+        solver_parameters.nonlinear_method == SolverParameters::Nonlinear::newton ?
+          Assembly::steady_newton :
+          Assembly::steady_picard;
+      for (unsigned int k = 1; k <= solver_parameters.max_nonlinear_iterations;
+           ++k)
+        {
+          BlockVector previous(owned_partitioning, mpi_communicator);
+          previous = solution;
+          assemble(kind, dt, 1);
+          solve_linear(true);
+          BlockVector change(owned_partitioning, mpi_communicator);
+          change = solution;
+          change.block(0) -= previous.block(0);
+          previous = solution;
+          const double norm = previous.block(0).l2_norm();
+          statistics.nonlinear_change =
+            change.block(0).l2_norm() / std::max(norm, 1e-300);
+          statistics.nonlinear_iterations = k;
+          pcout << "      nonlinear iteration " << k << ": change "
+                << statistics.nonlinear_change << ", "
+                << statistics.linear_iterations << " FGMRES iterations"
+                << std::endl;
+          if (statistics.nonlinear_change < solver_parameters.nonlinear_tolerance)
+            return;
+        }
+      AssertThrow(false,
+                  ExcMessage(
+                    "Steady Navier-Stokes did not converge in " +
+                    std::to_string(solver_parameters.max_nonlinear_iterations) +
+                    " iterations (last relative change " +
+                    Utilities::to_string(statistics.nonlinear_change) +
+                    "). Raise 'fluid solver/max nonlinear iterations', use "
+                    "newton, or march in time (mode = transient)."));
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::start_time_stepping()
+    {
+      old_solution      = solution;
+      older_solution    = solution;
+      steps_since_start = 0;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::advance(const double       dt,
+                                        const unsigned int bdf_order)
+    {
+      statistics      = SolveStatistics();
+      const unsigned int order = (steps_since_start == 0) ? 1 : bdf_order;
+      last_time_step  = dt;
+      last_bdf_order  = order;
+      last_was_steady = false;
+      make_constraints();
+      assemble(Assembly::transient, dt, order);
+      solve_linear(true);
+      statistics.nonlinear_iterations = 1;
+
+      BlockVector change(owned_partitioning, mpi_communicator), u(change);
+      change = solution;
+      u      = old_solution;
+      change.block(0) -= u.block(0);
+      u = solution;
+      last_change =
+        change.block(0).l2_norm() / std::max(u.block(0).l2_norm(), 1e-300);
+
+      older_solution = old_solution;
+      old_solution   = solution;
+      ++steps_since_start;
+    }
+
+
+    template <int dim>
+    double
+    PenalizedNavierStokes<dim>::relative_velocity_change() const
+    {
+      return last_change;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::for_each_solid_reaction(
+      const std::function<void(const int,
+                               const Point<dim> &,
+                               const Tensor<1, dim> &)> &f) const
+    {
+      if (solid_field == nullptr)
+        return;
+      const QGauss<dim> quadrature(fe.degree + 1);
+      FEValues<dim>     fe_values(fe,
+                              quadrature,
+                              update_values | update_quadrature_points |
+                                update_JxW_values);
+      const unsigned int               n_q = quadrature.size();
+      const FEValuesExtractors::Vector velocities(0);
+      std::vector<Tensor<1, dim>>      u(n_q), u_s(n_q);
+      std::vector<double>              vf(n_q);
+      std::vector<int>                 index(n_q);
+      const double rho = fluid_parameters.density;
+
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            solid_field->evaluate(
+              *cell,
+              fe_values.get_quadrature_points(),
+              vf,
+              u_s,
+              index);
+            bool any = false;
+            for (unsigned int q = 0; q < n_q; ++q)
+              any = any || (index[q] >= 0 && vf[q] < 1);
+            if (!any)
+              continue;
+            fe_values[velocities].get_function_values(solution, u);
+            for (unsigned int q = 0; q < n_q; ++q)
+              if (index[q] >= 0 && vf[q] < 1)
+                {
+                  // The part of the penalization term owed to the solid:
+                  // (1 - vf) rho (1 + Theta (1 - vf)) (u - u_s) / dt. For a
+                  // steady state it is the Brinkman term beta (u - u_s).
+                  const double coefficient =
+                    brinkman_coefficient(vf[q], last_time_step) *
+                    (last_was_steady || last_bdf_order == 1 ? 1. : 1.5);
+                  f(index[q],
+                    fe_values.quadrature_point(q),
+                    coefficient * (u[q] - u_s[q]) * fe_values.JxW(q));
+                }
+          }
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::for_each_solid_stress_divergence(
+      const std::function<void(const int,
+                               const Point<dim> &,
+                               const Tensor<1, dim> &)> &f) const
+    {
+      if (solid_field == nullptr)
+        return;
+      const QGauss<dim> quadrature(fe.degree + 1);
+      FEValues<dim>     fe_values(fe,
+                              quadrature,
+                              update_values | update_gradients |
+                                update_hessians | update_quadrature_points |
+                                update_JxW_values);
+      const unsigned int               n_q = quadrature.size();
+      const FEValuesExtractors::Vector velocities(0);
+      const FEValuesExtractors::Scalar pressure(dim);
+      std::vector<Tensor<1, dim>>      lap_u(n_q), grad_p(n_q), u_s(n_q);
+      std::vector<double>              vf(n_q);
+      std::vector<int>                 index(n_q);
+      const double                     mu = fluid_parameters.viscosity;
+
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            solid_field->evaluate(
+              *cell,
+              fe_values.get_quadrature_points(),
+              vf,
+              u_s,
+              index);
+            bool any = false;
+            for (unsigned int q = 0; q < n_q; ++q)
+              any = any || (index[q] >= 0 && vf[q] < 1);
+            if (!any)
+              continue;
+            fe_values[velocities].get_function_laplacians(solution, lap_u);
+            fe_values[pressure].get_function_gradients(solution, grad_p);
+            for (unsigned int q = 0; q < n_q; ++q)
+              if (index[q] >= 0 && vf[q] < 1)
+                f(index[q],
+                  fe_values.quadrature_point(q),
+                  (1. - vf[q]) * (mu * lap_u[q] - grad_p[q]) *
+                    fe_values.JxW(q));
+          }
+    }
+
+    template class PenalizedNavierStokes<2>;
+    template class PenalizedNavierStokes<3>;
+  } // namespace fluid
+} // namespace softsand

@@ -1,0 +1,105 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <softsand/core/parameters.h>
+#include <softsand/core/simulator.h>
+
+#include <iostream>
+
+namespace
+{
+  void
+  print_usage()
+  {
+    std::cout
+      << "Usage: softsand FILE.prm            run the scene in FILE.prm\n"
+         "       mpirun -np N softsand FILE.prm\n"
+         "       softsand --print-parameters [2|3]\n"
+         "                                    print every parameter with its\n"
+         "                                    documentation and default\n";
+  }
+
+  /// deal.II exception texts carry file/line/stack noise: keep the message.
+  std::string
+  user_message(const std::exception &e)
+  {
+    std::string text = e.what();
+    const std::string marker = "Additional information:";
+    const auto        pos    = text.find(marker);
+    if (pos != std::string::npos)
+      {
+        text = text.substr(pos + marker.size());
+        const auto stack = text.find("Stacktrace:");
+        if (stack != std::string::npos)
+          text = text.substr(0, stack);
+      }
+    // Collapse the indentation deal.II puts in front of wrapped lines.
+    std::string out;
+    bool        space = false;
+    for (const char c : text)
+      {
+        if (c == '\n' || c == ' ' || c == '\t')
+          space = !out.empty();
+        else
+          {
+            if (space)
+              out += ' ';
+            out += c;
+            space = false;
+          }
+      }
+    while (!out.empty() && (out.back() == '-' || out.back() == ' '))
+      out.pop_back();
+    return out;
+  }
+} // namespace
+
+
+int
+main(int argc, char *argv[])
+{
+  using namespace dealii;
+  try
+    {
+      Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+      deallog.depth_console(0);
+
+      if (argc < 2 || std::string(argv[1]) == "--help" ||
+          std::string(argv[1]) == "-h")
+        {
+          print_usage();
+          return argc < 2 ? 1 : 0;
+        }
+      if (std::string(argv[1]) == "--print-parameters")
+        {
+          ParameterHandler prm;
+          if (argc > 2 && std::string(argv[2]) == "2")
+            softsand::core::Parameters<2>::declare_parameters(prm);
+          else
+            softsand::core::Parameters<3>::declare_parameters(prm);
+          prm.print_parameters(std::cout,
+                               ParameterHandler::OutputStyle::PRM);
+          return 0;
+        }
+      try
+        {
+          softsand::core::run_parameter_file(argv[1], MPI_COMM_WORLD);
+        }
+      catch (const std::exception &e)
+        {
+          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            std::cerr << "softsand: error: " << user_message(e) << std::endl;
+          // Input errors are found on every rank alike; a failure on some
+          // ranks only must not leave the others waiting.
+          if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+            MPI_Abort(MPI_COMM_WORLD, 1);
+          return 1;
+        }
+    }
+  catch (const std::exception &e)
+    {
+      std::cerr << "softsand: error: " << user_message(e) << std::endl;
+      return 1;
+    }
+  return 0;
+}
