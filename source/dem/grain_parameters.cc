@@ -1,10 +1,7 @@
 #include <softsand/core/parameter_tools.h>
 #include <softsand/dem/grain_parameters.h>
-#if __has_include(<softsand/dem/pack_generators.h>)
 #include <softsand/dem/pack_generators.h>
 #include <softsand/io/grain_file.h>
-#define SOFTSAND_HAVE_GEN
-#endif
 
 #include <deal.II/base/utilities.h>
 
@@ -204,10 +201,8 @@ namespace softsand
         grains = parse_grain_list<dim>(p.list);
       switch (p.source)
         {
-#ifndef SOFTSAND_HAVE_GEN
-          default: break;
-#else
           case S::none:
+          case S::list: // parsed above
             break;
           case S::file:
             grains               = io::read_grain_file<dim>(p.file);
@@ -226,8 +221,13 @@ namespace softsand
                 random_pack(region, dist, p.solid_fraction, p.seed, 100000);
               break;
             }
-#endif
         }
+      // Loaded or listed packs come from users: refuse overlaps and grains
+      // outside the domain before anything is built on them.
+      if (p.source == S::file)
+        check_grains(grains, domain, "grains/file = " + p.file);
+      else if (p.source == S::list)
+        check_grains(grains, domain, "grains/list");
       if (!velocities_from_file)
         for (auto &g : grains)
           {

@@ -1,0 +1,66 @@
+"""Small helpers for the study drivers: override entries of a deal.II .prm
+text, run softsand, read its statistics table."""
+import os
+import re
+import subprocess
+import time
+
+
+def set_entry(text, path, value):
+    """Set 'subsection a/subsection b/set key' in a .prm text; append the
+    subsection block at the end if the entry is not there (ParameterHandler
+    accepts a subsection entered twice)."""
+    parts = path.split('/')
+    sections, key = parts[:-1], parts[-1]
+    stack, out, done = [], [], False
+    for line in text.splitlines():
+        s = line.strip()
+        m = re.match(r'subsection\s+(.*)$', s)
+        if m:
+            stack.append(m.group(1).strip())
+        elif s == 'end':
+            stack.pop()
+        else:
+            m = re.match(r'set\s+(.*?)\s*=', s)
+            if m and m.group(1) == key and stack == sections and not done:
+                line = line[:line.index('set')] + 'set %s = %s' % (key, value)
+                done = True
+        out.append(line)
+    if not done:
+        for i, sec in enumerate(sections):
+            out.append('  ' * i + 'subsection ' + sec)
+        out.append('  ' * len(sections) + 'set %s = %s' % (key, value))
+        for i in reversed(range(len(sections))):
+            out.append('  ' * i + 'end')
+    return '\n'.join(out) + '\n'
+
+
+def read_statistics(directory):
+    """Rows of <directory>/statistics.txt as dicts (name -> float)."""
+    with open(os.path.join(directory, 'statistics.txt')) as f:
+        names = f.readline().lstrip('#').split()
+        return [dict(zip(names, map(float, l.split()))) for l in f if l.strip()]
+
+
+def run(softsand, text, workdir, name, ranks=1, overrides=()):
+    """Write <workdir>/<name>.prm with the overrides applied, run it, and
+    return (last statistics row, wall time in s)."""
+    for path, value in overrides:
+        text = set_entry(text, path, value)
+    outdir = os.path.join(workdir, name)
+    text = set_entry(text, 'output/directory', outdir)
+    text = set_entry(text, 'output/write vtu', 'false')
+    text = set_entry(text, 'output/verbosity', 'quiet')
+    prm = os.path.join(workdir, name + '.prm')
+    os.makedirs(workdir, exist_ok=True)
+    with open(prm, 'w') as f:
+        f.write(text)
+    cmd = [softsand, prm]
+    if ranks > 1:
+        cmd = ['mpirun', '-np', str(ranks)] + cmd
+    start = time.time()
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.time() - start
+    if proc.returncode != 0:
+        return None, wall, proc.stderr.strip().splitlines()[-1:]
+    return read_statistics(outdir)[-1], wall, []
