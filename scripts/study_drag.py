@@ -32,11 +32,15 @@ def main():
     ap.add_argument('--theta', default='1e6')
     ap.add_argument('--ranks', type=int, default=1)
     ap.add_argument('--refinement', default='adaptive')
+    ap.add_argument('--solid-model', default='rigid nodes',
+                    help="'rigid nodes' or 'penalization'")
     ap.add_argument('--workdir', default='output/study_drag')
     a = ap.parse_args()
     base = open(os.path.join(ROOT, 'parameters', 'drag_sphere.prm')).read()
     softsand = os.path.join(ROOT, 'build', 'softsand')
     d, mu, rho = 1e-3, 1e-3, 1000.
+    print('Solid model: %s, Theta %s, %s refinement, %d rank(s)\n' % (
+        a.solid_model, a.theta, a.refinement, a.ranks))
     print('| Re | N | L/d | cells | DoFs | iterations | wall [s] | Cd | '
           'F/(3 pi mu d U) |')
     print('|---|---|---|---|---|---|---|---|---|')
@@ -52,6 +56,7 @@ def main():
                       ('mesh/cells per diameter', '%g' % n),
                       ('mesh/refinement', a.refinement),
                       ('fluid/theta', a.theta),
+                      ('fluid/solid model', a.solid_model),
                       ('simulation control/mode',
                        'steady stokes' if re <= 0.1 else
                        'steady navier stokes')]

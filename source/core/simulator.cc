@@ -14,6 +14,7 @@
 #include <deal.II/distributed/grid_refinement.h>
 #include <deal.II/numerics/error_estimator.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -49,7 +50,42 @@ namespace softsand
       TimerOutput::Scope t(timer, "mesh");
       const auto        &m = parameters.mesh;
       std::vector<unsigned int> cells = m.coarse_cells;
-      if (cells.empty())
+      const bool resolve_grains = !grains.empty() && m.cells_per_diameter > 0;
+      if (cells.empty() && resolve_grains)
+        {
+          // Octree cells halve per level: choose the coarse subdivision so
+          // that some level has exactly (or just below) the target size
+          // d_min / N, else N = 8 and N = 12 would give the same mesh.
+          const double target =
+            solid_field->locator().min_diameter() / m.cells_per_diameter;
+          double shortest = std::numeric_limits<double>::max();
+          for (unsigned int d = 0; d < dim; ++d)
+            shortest = std::min(shortest, m.upper_corner[d] - m.lower_corner[d]);
+          const double ratio = shortest / target;
+          unsigned int best_cells = 1;
+          double       best_mismatch = std::numeric_limits<double>::max();
+          for (int level = 0; level <= 20; ++level)
+            {
+              const double per_coarse = std::pow(2., level);
+              const unsigned int c =
+                std::max(1., std::ceil(ratio / per_coarse - 1e-9));
+              if (c > 16)
+                continue;
+              const double mismatch = c * per_coarse / ratio - 1;
+              if (mismatch < best_mismatch - 1e-9)
+                {
+                  best_mismatch = mismatch;
+                  best_cells    = c;
+                }
+            }
+          for (unsigned int d = 0; d < dim; ++d)
+            cells.push_back(std::max(
+              1u,
+              static_cast<unsigned int>(std::round(
+                (m.upper_corner[d] - m.lower_corner[d]) / shortest *
+                best_cells))));
+        }
+      else if (cells.empty())
         {
           double shortest = std::numeric_limits<double>::max();
           for (unsigned int d = 0; d < dim; ++d)
@@ -64,7 +100,7 @@ namespace softsand
         triangulation, cells, m.lower_corner, m.upper_corner, true);
       triangulation.refine_global(m.global_refinements);
 
-      if (!grains.empty() && m.cells_per_diameter > 0)
+      if (resolve_grains)
         {
           const double target =
             solid_field->locator().min_diameter() / m.cells_per_diameter;
@@ -286,6 +322,8 @@ namespace softsand
 
       if (!grains.empty())
         {
+          r["cells_per_diameter"] = solid_field->locator().min_diameter() /
+                                    coupling::min_cell_edge(triangulation);
           const auto porosity =
             postprocess::compute_porosity(triangulation, *solid_field);
           r["porosity_cells"]    = porosity.fluid_cell_fraction;

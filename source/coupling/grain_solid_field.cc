@@ -154,18 +154,7 @@ namespace softsand
         }
 
       if (parameters.model == VoidFractionParameters::Model::quadrature_point)
-        {
-          for (unsigned int q = 0; q < n_q; ++q)
-            {
-              const int g = grain_locator.containing_grain(points[q]);
-              if (g >= 0)
-                {
-                  void_fraction[q]  = 0;
-                  solid_index[q]    = g;
-                  solid_velocity[q] = grains[g].rigid_velocity(points[q]);
-                }
-            }
-        }
+        evaluate_exact(cell, points, void_fraction, solid_velocity, solid_index);
       else
         {
           const double solid = cell_solid_fraction(cell, dominant);
@@ -182,6 +171,36 @@ namespace softsand
             }
         }
     }
+
+    template <int dim>
+    void
+    GrainSolidField<dim>::evaluate_exact(
+      const CellAccessor<dim, dim> &cell,
+      const std::vector<Point<dim>>  &points,
+      std::vector<double>            &void_fraction,
+      std::vector<Tensor<1, dim>>    &solid_velocity,
+      std::vector<int>               &solid_index) const
+    {
+      const unsigned int n_q = points.size();
+      void_fraction.assign(n_q, 1.);
+      solid_velocity.assign(n_q, Tensor<1, dim>());
+      solid_index.assign(n_q, -1);
+      int dominant = -1;
+      if (grain_locator.classify_box(cell.bounding_box(), dominant) ==
+          GrainLocator<dim>::BoxRelation::outside_all)
+        return;
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const int g = grain_locator.containing_grain(points[q]);
+          if (g >= 0)
+            {
+              void_fraction[q]  = 0;
+              solid_index[q]    = g;
+              solid_velocity[q] = grains[g].rigid_velocity(points[q]);
+            }
+        }
+    }
+
 
     template class GrainSolidField<2>;
     template class GrainSolidField<3>;

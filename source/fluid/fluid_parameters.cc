@@ -23,6 +23,15 @@ namespace softsand
                         "Penalization Theta (dimensionless): density "
                         "rho (1 + Theta (1 - vf)) where grains cover the "
                         "fluid (the paper's Eq. 6; converged by 1e6).");
+      prm.declare_entry(
+        "solid model",
+        "penalization",
+        Patterns::Selection("penalization|rigid nodes"),
+        "penalization: the paper's Eq. 6, density rho (1 + Theta (1 - vf)) "
+        "and the grain velocity in the momentum predictor; rigid nodes: its "
+        "Theta -> infinity limit, velocity nodes inside grains constrained "
+        "to the grain's rigid velocity (sharper surface at the node spacing "
+        "h/2, and a linear system free of the penalty's ill-conditioning).");
       prm.declare_entry("body force",
                         "0; 0; 0",
                         Patterns::Anything(),
@@ -40,6 +49,9 @@ namespace softsand
       viscosity = prm.get_double("viscosity");
       theta     = prm.get_double("theta");
       body_force = prm.get("body force");
+      solid_model = prm.get("solid model") == "rigid nodes" ?
+                      SolidModel::rigid_nodes :
+                      SolidModel::penalization;
       if (!(density > 0))
         core::throw_invalid_parameter("fluid/density",
                                       prm.get("density"),

@@ -53,6 +53,13 @@ namespace softsand
                std::vector<Tensor<1, dim>>    &solid_velocity,
                std::vector<int>               &solid_index) const override;
 
+      void
+      evaluate_exact(const CellAccessor<dim, dim> &cell,
+                     const std::vector<Point<dim>>  &points,
+                     std::vector<double>            &void_fraction,
+                     std::vector<Tensor<1, dim>>    &solid_velocity,
+                     std::vector<int>               &solid_index) const override;
+
       /// Covered fraction of the cell, sub-sampled: 1 - vf_cell. Also returns
       /// the grain covering most of the cell (-1 if none).
       double

@@ -20,6 +20,15 @@ namespace softsand
       double      density   = 1000;
       double      viscosity = 1e-3;
       double      theta     = 1e6;
+      /// How grains act on the fluid: the paper's penalization (Eq. 6) or
+      /// its Theta -> infinity limit, velocity nodes inside grains
+      /// constrained to the grain's rigid velocity.
+      enum class SolidModel
+      {
+        penalization,
+        rigid_nodes
+      };
+      SolidModel solid_model = SolidModel::penalization;
       /// Body force per unit volume (N/m^3), a function of x, y, z, t.
       std::string body_force = "0; 0; 0";
 

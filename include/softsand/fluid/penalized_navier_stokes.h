@@ -20,7 +20,11 @@
 #include <softsand/fluid/fluid_parameters.h>
 #include <softsand/fluid/solid_field.h>
 
+#include <deal.II/lac/full_matrix.h>
+
 #include <functional>
+#include <map>
+#include <tuple>
 #include <memory>
 
 namespace softsand
@@ -169,10 +173,33 @@ namespace softsand
 
       void
       make_constraints();
+      /// Cell matrix, right-hand side and dof indices before constraints.
+      using CellCallback =
+        std::function<void(const typename DoFHandler<dim>::active_cell_iterator &,
+                           const FullMatrix<double> &,
+                           const Vector<double> &,
+                           const std::vector<types::global_dof_index> &)>;
+
+      /// Assemble the system; with @p cell_callback, hand each cell's
+      /// local system to it instead (for discrete reactions).
       void
-      assemble(const Assembly kind,
-               const double   time_step,
-               const unsigned int bdf_order);
+      assemble(const Assembly      kind,
+               const double        time_step,
+               const unsigned int  bdf_order,
+               const CellCallback *cell_callback = nullptr);
+      /// Rigid-node model: the force of the fluid on each constrained node,
+      /// F - A u of its row (the exact discrete reaction), after a solve.
+      void
+      compute_rigid_reactions(const Assembly     kind,
+                              const double       time_step,
+                              const unsigned int bdf_order);
+      bool
+      rigid_nodes() const
+      {
+        return solid_field != nullptr &&
+               fluid_parameters.solid_model ==
+                 FluidParameters::SolidModel::rigid_nodes;
+      }
       unsigned int
       solve_linear(const bool convection);
       /// Penalty coefficient of the fixed-point (steady) Brinkman term.
@@ -211,6 +238,11 @@ namespace softsand
       bool                             last_was_steady   = true;
       unsigned int                     steps_since_start = 0;
       SolveStatistics                  statistics;
+      /// Rigid-node model: velocity dof -> grain whose rigid velocity it is
+      /// constrained to, and the reactions (grain, node, force) of the
+      /// last solve.
+      std::map<types::global_dof_index, int> rigid_dof_grain;
+      std::vector<std::tuple<int, Point<dim>, Tensor<1, dim>>> rigid_reactions;
       double                           last_change = 0;
     };
   } // namespace fluid
