@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <softsand/core/parameter_tools.h>
 #include <softsand/core/parameters.h>
 #include <softsand/core/simulator.h>
 
@@ -19,39 +20,6 @@ namespace
          "                                    documentation and default\n";
   }
 
-  /// deal.II exception texts carry file/line/stack noise: keep the message.
-  std::string
-  user_message(const std::exception &e)
-  {
-    std::string text = e.what();
-    const std::string marker = "Additional information:";
-    const auto        pos    = text.find(marker);
-    if (pos != std::string::npos)
-      {
-        text = text.substr(pos + marker.size());
-        const auto stack = text.find("Stacktrace:");
-        if (stack != std::string::npos)
-          text = text.substr(0, stack);
-      }
-    // Collapse the indentation deal.II puts in front of wrapped lines.
-    std::string out;
-    bool        space = false;
-    for (const char c : text)
-      {
-        if (c == '\n' || c == ' ' || c == '\t')
-          space = !out.empty();
-        else
-          {
-            if (space)
-              out += ' ';
-            out += c;
-            space = false;
-          }
-      }
-    while (!out.empty() && (out.back() == '-' || out.back() == ' '))
-      out.pop_back();
-    return out;
-  }
 } // namespace
 
 
@@ -88,7 +56,7 @@ main(int argc, char *argv[])
       catch (const std::exception &e)
         {
           if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-            std::cerr << "softsand: error: " << user_message(e) << std::endl;
+            std::cerr << "softsand: error: " << softsand::core::error_message(e) << std::endl;
           // Input errors are found on every rank alike; a failure on some
           // ranks only must not leave the others waiting.
           if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
@@ -98,7 +66,7 @@ main(int argc, char *argv[])
     }
   catch (const std::exception &e)
     {
-      std::cerr << "softsand: error: " << user_message(e) << std::endl;
+      std::cerr << "softsand: error: " << softsand::core::error_message(e) << std::endl;
       return 1;
     }
   return 0;

@@ -20,6 +20,40 @@ namespace softsand
     }
 
 
+    std::string
+    error_message(const std::exception &e)
+    {
+      std::string text = e.what();
+      const std::string marker = "Additional information:";
+      const auto        pos    = text.find(marker);
+      if (pos != std::string::npos)
+        {
+          text = text.substr(pos + marker.size());
+          const auto stack = text.find("Stacktrace:");
+          if (stack != std::string::npos)
+            text = text.substr(0, stack);
+        }
+      // Collapse the indentation deal.II puts in front of wrapped lines.
+      std::string out;
+      bool        space = false;
+      for (const char c : text)
+        {
+          if (c == '\n' || c == ' ' || c == '\t')
+            space = !out.empty();
+          else
+            {
+              if (space)
+                out += ' ';
+              out += c;
+              space = false;
+            }
+        }
+      while (!out.empty() && (out.back() == '-' || out.back() == ' '))
+        out.pop_back();
+      return out;
+    }
+
+
     std::vector<double>
     get_double_list(const ParameterHandler &prm,
                     const std::string      &entry,

@@ -18,6 +18,8 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include <set>
+
 namespace softsand
 {
   namespace fluid
@@ -131,6 +133,32 @@ namespace softsand
                     rigid_dof_grain[i] = grain[k];
                   }
               }
+
+          // A pressure node all of whose cells have every velocity node
+          // rigid meets no free velocity in div: it is undetermined. Pin it
+          // (p = 0) or FGMRES crawls through one null vector per node.
+          // Only locally active dofs: their cells are all owned or ghost.
+          const IndexSet active = DoFTools::extract_locally_active_dofs(dof_handler);
+          std::set<types::global_dof_index> free_pressure, solid_pressure;
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (!cell->is_artificial())
+              {
+                cell->get_dof_indices(dof_indices);
+                bool solid_cell = true;
+                for (unsigned int k = 0; k < dof_indices.size() && solid_cell; ++k)
+                  if (fe.system_to_component_index(k).first < dim &&
+                      rigid_dof_grain.count(dof_indices[k]) == 0 &&
+                      !constraints.is_constrained(dof_indices[k]))
+                    solid_cell = false;
+                for (unsigned int k = 0; k < dof_indices.size(); ++k)
+                  if (fe.system_to_component_index(k).first == dim)
+                    (solid_cell ? solid_pressure : free_pressure)
+                      .insert(dof_indices[k]);
+              }
+          for (const auto i : solid_pressure)
+            if (free_pressure.count(i) == 0 && active.is_element(i) &&
+                !constraints.is_constrained(i))
+              constraints.add_line(i);
         }
       constraints.close();
     }

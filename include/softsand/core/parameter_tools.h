@@ -53,6 +53,11 @@ namespace softsand
       return {{"pi", M_PI}};
     }
 
+    /// The user-facing part of an exception's text: deal.II's exceptions
+    /// carry file, line and stack noise around the message.
+    std::string
+    error_message(const std::exception &e);
+
     /// Declare an entry holding a comma-separated list of numbers.
     void
     declare_double_list(ParameterHandler  &prm,
