@@ -134,22 +134,41 @@ namespace softsand
                   }
               }
 
+          // Hanging nodes whose parents are rigid carry part of the grain's
+          // reaction; close() below resolves those parents away, so keep
+          // the original weights.
+          hanging_rigid_parents.clear();
+          for (const auto &line : constraints.get_lines())
+            for (const auto &[parent, weight] : line.entries)
+              if (rigid_dof_grain.count(parent))
+                hanging_rigid_parents[line.index].emplace_back(parent, weight);
+
           // A pressure node all of whose cells have every velocity node
           // rigid meets no free velocity in div: it is undetermined. Pin it
           // (p = 0) or FGMRES crawls through one null vector per node.
           // Only locally active dofs: their cells are all owned or ghost.
           const IndexSet active = DoFTools::extract_locally_active_dofs(dof_handler);
           std::set<types::global_dof_index> free_pressure, solid_pressure;
+          // Rigid, Dirichlet, or hanging on rigid parents only.
+          const auto fixed_velocity = [&](const types::global_dof_index i) {
+            if (rigid_dof_grain.count(i))
+              return true;
+            const auto *entries = constraints.get_constraint_entries(i);
+            if (entries == nullptr)
+              return false;
+            const auto hanging = hanging_rigid_parents.find(i);
+            return entries->empty() ||
+                   (hanging != hanging_rigid_parents.end() &&
+                    hanging->second.size() == entries->size());
+          };
           for (const auto &cell : dof_handler.active_cell_iterators())
             if (!cell->is_artificial())
               {
                 cell->get_dof_indices(dof_indices);
                 bool solid_cell = true;
                 for (unsigned int k = 0; k < dof_indices.size() && solid_cell; ++k)
-                  if (fe.system_to_component_index(k).first < dim &&
-                      rigid_dof_grain.count(dof_indices[k]) == 0 &&
-                      !constraints.is_constrained(dof_indices[k]))
-                    solid_cell = false;
+                  if (fe.system_to_component_index(k).first < dim)
+                    solid_cell = fixed_velocity(dof_indices[k]);
                 for (unsigned int k = 0; k < dof_indices.size(); ++k)
                   if (fe.system_to_component_index(k).first == dim)
                     (solid_cell ? solid_pressure : free_pressure)
@@ -672,25 +691,33 @@ namespace softsand
             const std::vector<types::global_dof_index>           &dofs) {
           bool any = false;
           for (const auto i : dofs)
-            any = any || rigid_dof_grain.count(i);
+            any = any || rigid_dof_grain.count(i) ||
+                  hanging_rigid_parents.count(i);
           if (!any)
             return;
           fe_values.reinit(cell);
           cell->get_dof_values(solution, local_solution);
+          const auto add = [&](const unsigned int k, const int grain,
+                               const double weight) {
+            // Force of the fluid on the node: F_k - (A u)_k.
+            double r = rhs(k);
+            for (unsigned int j = 0; j < dofs.size(); ++j)
+              r -= matrix(k, j) * local_solution(j);
+            Tensor<1, dim> force;
+            force[fe.system_to_component_index(k).first] = weight * r;
+            rigid_reactions.emplace_back(grain,
+                                         fe_values.quadrature_point(k),
+                                         force);
+          };
           for (unsigned int k = 0; k < dofs.size(); ++k)
             {
-              const auto it = rigid_dof_grain.find(dofs[k]);
-              if (it == rigid_dof_grain.end())
-                continue;
-              // Force of the fluid on the node: F_k - (A u)_k.
-              double r = rhs(k);
-              for (unsigned int j = 0; j < dofs.size(); ++j)
-                r -= matrix(k, j) * local_solution(j);
-              Tensor<1, dim> force;
-              force[fe.system_to_component_index(k).first] = r;
-              rigid_reactions.emplace_back(it->second,
-                                           fe_values.quadrature_point(k),
-                                           force);
+              const auto rigid = rigid_dof_grain.find(dofs[k]);
+              if (rigid != rigid_dof_grain.end())
+                add(k, rigid->second, 1.);
+              const auto hanging = hanging_rigid_parents.find(dofs[k]);
+              if (hanging != hanging_rigid_parents.end())
+                for (const auto &[parent, weight] : hanging->second)
+                  add(k, rigid_dof_grain.at(parent), weight);
             }
         };
       assemble(kind, dt, bdf_order, &reaction);

@@ -242,6 +242,9 @@ namespace softsand
       /// constrained to, and the reactions (grain, node, force) of the
       /// last solve.
       std::map<types::global_dof_index, int> rigid_dof_grain;
+      std::map<types::global_dof_index,
+               std::vector<std::pair<types::global_dof_index, double>>>
+        hanging_rigid_parents;
       std::vector<std::tuple<int, Point<dim>, Tensor<1, dim>>> rigid_reactions;
       double                           last_change = 0;
     };
