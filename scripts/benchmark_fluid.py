@@ -1,0 +1,51 @@
+#!/usr/bin/env python3
+"""Throughput of one steady penalized solve: DoFs per second per core of
+the fixed-sphere scene (parameters/drag_sphere.prm) on 1 and 2 ranks, for
+both solid models. Time = the whole run (mesh, setup, assembly, solve).
+
+  python3 scripts/benchmark_fluid.py [--n 24] [--box 10] [--ranks 1,2]
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(__file__))
+import prm_tools  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--n', default='24')
+    ap.add_argument('--box', type=float, default=10)
+    ap.add_argument('--ranks', default='1,2')
+    ap.add_argument('--models', default='rigid nodes,penalization')
+    ap.add_argument('--workdir', default='output/benchmark_fluid')
+    a = ap.parse_args()
+    base = open(os.path.join(ROOT, 'parameters', 'drag_sphere.prm')).read()
+    softsand = os.path.join(ROOT, 'build', 'softsand')
+    h = a.box * 1e-3 / 2
+    print('| solid model | N | ranks | DoFs | iterations | wall [s] | '
+          'DoFs/s/core |')
+    print('|---|---|---|---|---|---|---|')
+    for model in a.models.split(','):
+        for n in a.n.split(','):
+            for ranks in map(int, a.ranks.split(',')):
+                row, wall, err = prm_tools.run(
+                    softsand, base, a.workdir,
+                    '%s_n%s_np%d' % (model.replace(' ', '_'), n, ranks), ranks,
+                    [('mesh/cells per diameter', n),
+                     ('mesh/lower corner', '%g, %g, %g' % (-h, -h, -h)),
+                     ('mesh/upper corner', '%g, %g, %g' % (h, h, h)),
+                     ('fluid/solid model', model)])
+                if row is None:
+                    print('| %s | %s | %d | failed: %s |' % (model, n, ranks, err))
+                    continue
+                print('| %s | %s | %d | %d | %d | %.1f | %.3g |' % (
+                    model, n, ranks, row['dofs'], row['linear_iterations'],
+                    wall, row['dofs'] / wall / ranks), flush=True)
+
+
+if __name__ == '__main__':
+    main()
