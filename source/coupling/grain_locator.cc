@@ -137,14 +137,26 @@ namespace softsand
     int
     GrainLocator<dim>::containing_grain(const Point<dim> &x) const
     {
+      return containing_grain(x, 0.);
+    }
+
+
+    template <int dim>
+    int
+    GrainLocator<dim>::containing_grain(const Point<dim> &x,
+                                        const double      inflation) const
+    {
       thread_local std::vector<unsigned int> near;
-      grains_near_box(BoundingBox<dim>(std::make_pair(x, x)), near);
+      BoundingBox<dim> box(std::make_pair(x, x));
+      if (inflation > 0)
+        box.extend(inflation);
+      grains_near_box(box, near);
       int    best       = -1;
       double best_depth = 0;
       for (const unsigned int i : near)
         {
           const auto  &g     = grain_list[i];
-          const double depth = g.radius - x.distance(g.center);
+          const double depth = g.radius + inflation - x.distance(g.center);
           if (depth > best_depth || (best < 0 && depth >= 0))
             {
               best       = i;

@@ -179,19 +179,23 @@ namespace softsand
       const std::vector<Point<dim>>  &points,
       std::vector<double>            &void_fraction,
       std::vector<Tensor<1, dim>>    &solid_velocity,
-      std::vector<int>               &solid_index) const
+      std::vector<int>               &solid_index,
+      const double                    inflation) const
     {
       const unsigned int n_q = points.size();
       void_fraction.assign(n_q, 1.);
       solid_velocity.assign(n_q, Tensor<1, dim>());
       solid_index.assign(n_q, -1);
-      int dominant = -1;
-      if (grain_locator.classify_box(cell.bounding_box(), dominant) ==
+      int              dominant = -1;
+      BoundingBox<dim> box      = cell.bounding_box();
+      if (inflation > 0)
+        box.extend(inflation);
+      if (grain_locator.classify_box(box, dominant) ==
           GrainLocator<dim>::BoxRelation::outside_all)
         return;
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const int g = grain_locator.containing_grain(points[q]);
+          const int g = grain_locator.containing_grain(points[q], inflation);
           if (g >= 0)
             {
               void_fraction[q]  = 0;

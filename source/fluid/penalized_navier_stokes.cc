@@ -110,6 +110,17 @@ namespace softsand
           std::vector<double>                  vf;
           std::vector<Tensor<1, dim>>          u_s;
           std::vector<int>                     grain;
+          // One offset for the whole mesh (grain surfaces sit in the finest
+          // cells): a per-cell spacing would let a coarse neighbour claim
+          // nodes that the fine cells sharing them leave free. Q2 nodes are
+          // half a cell edge apart.
+          double finest = std::numeric_limits<double>::max();
+          for (const auto &cell : dof_handler.active_cell_iterators())
+            if (cell->is_locally_owned())
+              finest = std::min(finest, cell->minimum_vertex_distance());
+          finest = Utilities::MPI::min(finest, mpi_communicator);
+          const double inflation =
+            fluid_parameters.rigid_node_offset * finest / fe.degree;
           for (const auto &cell : dof_handler.active_cell_iterators())
             if (!cell->is_artificial())
               {
@@ -118,7 +129,8 @@ namespace softsand
                                             fe_values.get_quadrature_points(),
                                             vf,
                                             u_s,
-                                            grain);
+                                            grain,
+                                            inflation);
                 cell->get_dof_indices(dof_indices);
                 for (unsigned int k = 0; k < dof_indices.size(); ++k)
                   {
@@ -377,6 +389,25 @@ namespace softsand
 
             const double h = cell->diameter() / std::sqrt(double(dim));
 
+            // Rigid nodes: the pressure of a cut cell acts only on the free
+            // velocity nodes, so the Schur complement there is smaller than
+            // the viscous mass matrix by about the free fraction: scale the
+            // approximation alike.
+            double free_fraction = 1;
+            if (!rigid_dof_grain.empty())
+              {
+                cell->get_dof_indices(dof_indices);
+                unsigned int n_velocity = 0, n_rigid = 0;
+                for (unsigned int k = 0; k < dofs_per_cell; ++k)
+                  if (component[k] < dim)
+                    {
+                      ++n_velocity;
+                      n_rigid += rigid_dof_grain.count(dof_indices[k]);
+                    }
+                free_fraction =
+                  std::max(1e-4, std::pow(1. - double(n_rigid) / n_velocity, 4));
+              }
+
             for (unsigned int q = 0; q < n_q; ++q)
               {
                 const double JxW = fe_values.JxW(q);
@@ -451,9 +482,9 @@ namespace softsand
                   f += rho * (grad_w * w); // rho (u_k . grad) u_k
 
                 // Schur complement approximation coefficients (per point).
-                double mass_weight = 1. / mu;
+                double mass_weight = free_fraction / mu;
                 if (schur == SolverParameters::Schur::weighted_mass)
-                  mass_weight = 1. / (mu + beta * h * h);
+                  mass_weight = free_fraction / (mu + beta * h * h);
                 const double laplace_weight =
                   (schur == SolverParameters::Schur::cahouet_chabard) ?
                     1. / (beta + beta_floor) :

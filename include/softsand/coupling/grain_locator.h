@@ -37,6 +37,11 @@ namespace softsand
       int
       containing_grain(const Point<dim> &x) const;
 
+      /// As above for grains grown by @p inflation (m): the deepest grain
+      /// with |x - centre| <= radius + inflation, or -1.
+      int
+      containing_grain(const Point<dim> &x, const double inflation) const;
+
       /// Whether the box lies outside all grains, wholly inside one grain
       /// (then @p grain_index is set), or is cut by a grain surface.
       BoxRelation

@@ -58,7 +58,8 @@ namespace softsand
                      const std::vector<Point<dim>>  &points,
                      std::vector<double>            &void_fraction,
                      std::vector<Tensor<1, dim>>    &solid_velocity,
-                     std::vector<int>               &solid_index) const override;
+                     std::vector<int>               &solid_index,
+                     const double inflation = 0) const override;
 
       /// Covered fraction of the cell, sub-sampled: 1 - vf_cell. Also returns
       /// the grain covering most of the cell (-1 if none).

@@ -29,6 +29,9 @@ namespace softsand
         rigid_nodes
       };
       SolidModel solid_model = SolidModel::penalization;
+      /// Rigid nodes: nodes within radius + offset * (node spacing) of a
+      /// grain centre are constrained (dimensionless offset).
+      double rigid_node_offset = 0.25;
       /// Body force per unit volume (N/m^3), a function of x, y, z, t.
       std::string body_force = "0; 0; 0";
 

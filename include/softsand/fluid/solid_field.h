@@ -39,14 +39,16 @@ namespace softsand
                std::vector<int>               &solid_index) const = 0;
 
       /// As evaluate(), but always with the exact solid indicator (vf = 0
-      /// or 1 at each point), whatever void fraction model the scene uses:
-      /// the rigid-node model needs to know which nodes lie inside a solid.
+      /// or 1 at each point) of the solids grown by @p inflation (m),
+      /// whatever void fraction model the scene uses: the rigid-node model
+      /// needs to know which nodes lie inside a solid.
       virtual void
       evaluate_exact(const CellAccessor<dim, dim> &cell,
                      const std::vector<Point<dim>>  &points,
                      std::vector<double>            &void_fraction,
                      std::vector<Tensor<1, dim>>    &solid_velocity,
-                     std::vector<int>               &solid_index) const = 0;
+                     std::vector<int>               &solid_index,
+                     const double                    inflation = 0) const = 0;
     };
   } // namespace fluid
 } // namespace softsand
