@@ -1,0 +1,47 @@
+// Permeability of a simple-cubic array at solid fraction 0.216
+// (parameters/sc_permeability.prm, rigid-node grains, 4 and 8 cells per
+// diameter) against Zick & Homsy (1982): K = mu U s / dp with
+// dp = 6 pi mu a K* U / s^2, K* = 7.442. Also the momentum balance: the
+// pressure drop over one period times the cell face equals the drag of
+// one sphere, averaged over the 5 spheres (inlet and outlet cells
+// included, so about 1.05 rather than 1).
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "test_scenes.h"
+#include "tests.h"
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+  std::ifstream     in(SOURCE_DIR "/../parameters/sc_permeability.prm");
+  std::stringstream base;
+  base << in.rdbuf()
+       << "subsection output\n set directory = results\n"
+          " set write vtu = false\n set verbosity = quiet\nend\n";
+  const double s = 2e-4, mu = 1e-3, U = 1e-4, c = 0.216;
+  const double a       = s * std::cbrt(3 * c / (4 * M_PI));
+  const double dp_ref  = 6 * M_PI * mu * a * 7.442 * U / (s * s);
+  const double k_ref   = mu * U * s / dp_ref;
+  for (const unsigned int n : {4u, 8u})
+    {
+      std::ostringstream text;
+      text << base.str() << "subsection grains\n set diameter = "
+           << std::setprecision(10) << 2 * a
+           << "\nend\nsubsection mesh\n set cells per diameter = " << n
+           << "\nend\n";
+      const auto r = run_scene<3>(text.str());
+      deallog << "N = " << n << ": K / K_Zick-Homsy = " << std::setprecision(2)
+              << r.at("permeability") / k_ref
+              << ", mean grain drag / (dp s^2) = "
+              << r.at("grain_force_x") / 5 /
+                   (r.at("pressure_drop") * s * s)
+              << std::setprecision(6) << std::endl;
+    }
+}
