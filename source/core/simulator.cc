@@ -248,6 +248,9 @@ namespace softsand
       r["dofs"]                 = fluid->n_dofs();
       r["linear_iterations"]    = fluid->get_statistics().linear_iterations;
       r["nonlinear_iterations"] = fluid->get_statistics().nonlinear_iterations;
+      // All FGMRES iterations of this solve or step (Newton: every update).
+      r["total_linear_iterations"] =
+        fluid->get_statistics().total_linear_iterations;
 
       const unsigned int axis = p.postprocessing.flow_axis;
       const double       mu   = p.fluid.viscosity;
@@ -402,7 +405,8 @@ namespace softsand
       pcout << "Results (" << dim << "D):" << std::endl;
       for (const auto &[name, value] : last_results)
         if (name != "wall_time" && name != "linear_iterations" &&
-            name != "nonlinear_iterations")
+            name != "nonlinear_iterations" &&
+            name != "total_linear_iterations")
           pcout << "  " << std::left << std::setw(24) << name << " "
                 << std::scientific << std::setprecision(5) << value
                 << std::defaultfloat << std::endl;

@@ -349,6 +349,18 @@ namespace softsand
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
+            if (cell_callback != nullptr && rigid_nodes())
+              {
+                // Reactions live on rigid nodes and on hanging nodes of
+                // rigid parents: skip the other cells.
+                cell->get_dof_indices(dof_indices);
+                bool any = false;
+                for (const auto i : dof_indices)
+                  any = any || rigid_dof_grain.count(i) ||
+                        hanging_rigid_parents.count(i);
+                if (!any)
+                  continue;
+              }
             fe_values.reinit(cell);
             local_matrix  = 0;
             local_mass    = 0;
@@ -720,12 +732,6 @@ namespace softsand
             const FullMatrix<double>                             &matrix,
             const Vector<double>                                 &rhs,
             const std::vector<types::global_dof_index>           &dofs) {
-          bool any = false;
-          for (const auto i : dofs)
-            any = any || rigid_dof_grain.count(i) ||
-                  hanging_rigid_parents.count(i);
-          if (!any)
-            return;
           fe_values.reinit(cell);
           cell->get_dof_values(solution, local_solution);
           const auto add = [&](const unsigned int k, const int grain,
