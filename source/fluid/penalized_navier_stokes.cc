@@ -891,44 +891,58 @@ namespace softsand
             f(grain, point, force);
           return;
         }
-      const QGauss<dim> quadrature(fe.degree + 1);
-      FEValues<dim>     fe_values(fe,
-                              quadrature,
-                              update_values | update_quadrature_points |
-                                update_JxW_values);
-      const unsigned int               n_q = quadrature.size();
       const FEValuesExtractors::Vector velocities(0);
-      std::vector<Tensor<1, dim>>      u(n_q), u_s(n_q);
-      std::vector<double>              vf(n_q);
-      std::vector<int>                 index(n_q);
+      std::vector<Tensor<1, dim>>      u;
+      for_each_covered_cell(
+        update_values | update_quadrature_points | update_JxW_values,
+        [&](const FEValues<dim>               &fe_values,
+            const std::vector<double>         &vf,
+            const std::vector<Tensor<1, dim>> &u_s,
+            const std::vector<int>            &index) {
+          u.resize(vf.size());
+          fe_values[velocities].get_function_values(solution, u);
+          for (unsigned int q = 0; q < vf.size(); ++q)
+            if (index[q] >= 0 && vf[q] < 1)
+              {
+                // The part of the penalization term owed to the solid:
+                // (1 - vf) rho (1 + Theta (1 - vf)) (u - u_s) / dt. For a
+                // steady state it is the Brinkman term beta (u - u_s).
+                const double coefficient =
+                  brinkman_coefficient(vf[q], last_time_step) *
+                  (last_was_steady || last_bdf_order == 1 ? 1. : 1.5);
+                f(index[q],
+                  fe_values.quadrature_point(q),
+                  coefficient * (u[q] - u_s[q]) * fe_values.JxW(q));
+              }
+        });
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::for_each_covered_cell(
+      const UpdateFlags  flags,
+      const std::function<void(const FEValues<dim> &,
+                               const std::vector<double> &,
+                               const std::vector<Tensor<1, dim>> &,
+                               const std::vector<int> &)> &cell_action) const
+    {
+      const QGauss<dim>           quadrature(fe.degree + 1);
+      FEValues<dim>               fe_values(fe, quadrature, flags);
+      std::vector<Tensor<1, dim>> u_s;
+      std::vector<double>         vf;
+      std::vector<int>            index;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
             fe_values.reinit(cell);
             solid_field->evaluate(
-              *cell,
-              fe_values.get_quadrature_points(),
-              vf,
-              u_s,
-              index);
-            bool any = false;
-            for (unsigned int q = 0; q < n_q; ++q)
-              any = any || (index[q] >= 0 && vf[q] < 1);
-            if (!any)
-              continue;
-            fe_values[velocities].get_function_values(solution, u);
-            for (unsigned int q = 0; q < n_q; ++q)
+              *cell, fe_values.get_quadrature_points(), vf, u_s, index);
+            for (unsigned int q = 0; q < vf.size(); ++q)
               if (index[q] >= 0 && vf[q] < 1)
                 {
-                  // The part of the penalization term owed to the solid:
-                  // (1 - vf) rho (1 + Theta (1 - vf)) (u - u_s) / dt. For a
-                  // steady state it is the Brinkman term beta (u - u_s).
-                  const double coefficient =
-                    brinkman_coefficient(vf[q], last_time_step) *
-                    (last_was_steady || last_bdf_order == 1 ? 1. : 1.5);
-                  f(index[q],
-                    fe_values.quadrature_point(q),
-                    coefficient * (u[q] - u_s[q]) * fe_values.JxW(q));
+                  cell_action(fe_values, vf, u_s, index);
+                  break;
                 }
           }
     }
@@ -943,44 +957,27 @@ namespace softsand
     {
       if (solid_field == nullptr)
         return;
-      const QGauss<dim> quadrature(fe.degree + 1);
-      FEValues<dim>     fe_values(fe,
-                              quadrature,
-                              update_values | update_gradients |
-                                update_hessians | update_quadrature_points |
-                                update_JxW_values);
-      const unsigned int               n_q = quadrature.size();
       const FEValuesExtractors::Vector velocities(0);
       const FEValuesExtractors::Scalar pressure(dim);
-      std::vector<Tensor<1, dim>>      lap_u(n_q), grad_p(n_q), u_s(n_q);
-      std::vector<double>              vf(n_q);
-      std::vector<int>                 index(n_q);
+      std::vector<Tensor<1, dim>>      lap_u, grad_p;
       const double                     mu = fluid_parameters.viscosity;
-
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            fe_values.reinit(cell);
-            solid_field->evaluate(
-              *cell,
-              fe_values.get_quadrature_points(),
-              vf,
-              u_s,
-              index);
-            bool any = false;
-            for (unsigned int q = 0; q < n_q; ++q)
-              any = any || (index[q] >= 0 && vf[q] < 1);
-            if (!any)
-              continue;
-            fe_values[velocities].get_function_laplacians(solution, lap_u);
-            fe_values[pressure].get_function_gradients(solution, grad_p);
-            for (unsigned int q = 0; q < n_q; ++q)
-              if (index[q] >= 0 && vf[q] < 1)
-                f(index[q],
-                  fe_values.quadrature_point(q),
-                  (1. - vf[q]) * (mu * lap_u[q] - grad_p[q]) *
-                    fe_values.JxW(q));
-          }
+      for_each_covered_cell(
+        update_values | update_gradients | update_hessians |
+          update_quadrature_points | update_JxW_values,
+        [&](const FEValues<dim>               &fe_values,
+            const std::vector<double>         &vf,
+            const std::vector<Tensor<1, dim>> &,
+            const std::vector<int>            &index) {
+          lap_u.resize(vf.size());
+          grad_p.resize(vf.size());
+          fe_values[velocities].get_function_laplacians(solution, lap_u);
+          fe_values[pressure].get_function_gradients(solution, grad_p);
+          for (unsigned int q = 0; q < vf.size(); ++q)
+            if (index[q] >= 0 && vf[q] < 1)
+              f(index[q],
+                fe_values.quadrature_point(q),
+                (1. - vf[q]) * (mu * lap_u[q] - grad_p[q]) * fe_values.JxW(q));
+        });
     }
 
     template class PenalizedNavierStokes<2>;

@@ -11,6 +11,7 @@
 #include <deal.II/dofs/dof_handler.h>
 
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
@@ -202,6 +203,15 @@ namespace softsand
       }
       unsigned int
       solve_linear(const bool convection);
+      /// Call @p cell_action with the FEValues (Gauss points, @p flags) and
+      /// the solid field of each locally owned cell with a covered point.
+      void
+      for_each_covered_cell(
+        const UpdateFlags flags,
+        const std::function<void(const FEValues<dim> &,
+                                 const std::vector<double> &,
+                                 const std::vector<Tensor<1, dim>> &,
+                                 const std::vector<int> &)> &cell_action) const;
       /// Penalty coefficient of the fixed-point (steady) Brinkman term.
       double
       brinkman_coefficient(const double void_fraction,
