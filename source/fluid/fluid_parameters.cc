@@ -42,6 +42,14 @@ namespace softsand
         "the outermost constrained nodes; 0.25 puts it on the sphere in the "
         "Stokes drag study at 4 and 8 cells per diameter (doc/validation.md), "
         "0 constrains the nodes inside the grain only.");
+      prm.declare_entry(
+        "constrain grain interiors",
+        "true",
+        Patterns::Bool(),
+        "solid model = penalization: constrain the velocity nodes of cells "
+        "wholly inside a grain to its rigid velocity (the Theta -> infinity "
+        "limit there) so that the penalty acts in cut cells only; false: "
+        "penalize every covered cell as in the paper.");
       prm.declare_entry("body force",
                         "0; 0; 0",
                         Patterns::Anything(),
@@ -60,6 +68,7 @@ namespace softsand
       theta     = prm.get_double("theta");
       body_force = prm.get("body force");
       rigid_node_offset = prm.get_double("rigid node offset");
+      constrain_grain_interiors = prm.get_bool("constrain grain interiors");
       solid_model = prm.get("solid model") == "rigid nodes" ?
                       SolidModel::rigid_nodes :
                       SolidModel::penalization;

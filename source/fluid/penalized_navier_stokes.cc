@@ -18,6 +18,7 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
 #include <set>
 
 namespace softsand
@@ -99,11 +100,14 @@ namespace softsand
                                                     constraints,
                                                     time);
       rigid_dof_grain.clear();
-      if (rigid_nodes())
+      hanging_rigid_parents.clear();
+      if (rigid_nodes() || constrained_interiors())
         {
-          // Theta -> infinity: nodes inside a grain move with it. Boundary
-          // and hanging-node constraints keep priority. Ghost cells are
-          // visited too, so that ranks agree on shared dofs.
+          // Theta -> infinity: nodes inside a grain move with it (rigid
+          // nodes: every node inside; penalization: the nodes of cells
+          // wholly inside one grain, so that the penalty stays in cut
+          // cells). Boundary and hanging-node constraints keep priority.
+          // Ghost cells are visited too, so that ranks agree on shared dofs.
           const Quadrature<dim> nodes(fe.get_unit_support_points());
           FEValues<dim> fe_values(fe, nodes, update_quadrature_points);
           std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
@@ -120,7 +124,9 @@ namespace softsand
               finest = std::min(finest, cell->minimum_vertex_distance());
           finest = Utilities::MPI::min(finest, mpi_communicator);
           const double inflation =
-            fluid_parameters.rigid_node_offset * finest / fe.degree;
+            rigid_nodes() ?
+              fluid_parameters.rigid_node_offset * finest / fe.degree :
+              0.;
           for (const auto &cell : dof_handler.active_cell_iterators())
             if (!cell->is_artificial())
               {
@@ -132,6 +138,12 @@ namespace softsand
                                             grain,
                                             inflation);
                 cell->get_dof_indices(dof_indices);
+                // A box whose nodes all lie in one sphere lies in it.
+                if (!rigid_nodes() &&
+                    !std::all_of(grain.begin(), grain.end(), [&](const int g) {
+                      return g >= 0 && g == grain[0];
+                    }))
+                  continue;
                 for (unsigned int k = 0; k < dof_indices.size(); ++k)
                   {
                     const unsigned int c = fe.system_to_component_index(k).first;
@@ -149,7 +161,6 @@ namespace softsand
           // Hanging nodes whose parents are rigid carry part of the grain's
           // reaction; close() below resolves those parents away, so keep
           // the original weights.
-          hanging_rigid_parents.clear();
           for (const auto &line : constraints.get_lines())
             for (const auto &[parent, weight] : line.entries)
               if (rigid_dof_grain.count(parent))
@@ -349,7 +360,7 @@ namespace softsand
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            if (cell_callback != nullptr && rigid_nodes())
+            if (cell_callback != nullptr)
               {
                 // Reactions live on rigid nodes and on hanging nodes of
                 // rigid parents: skip the other cells.
@@ -722,7 +733,7 @@ namespace softsand
       const unsigned int bdf_order)
     {
       rigid_reactions.clear();
-      if (!rigid_nodes())
+      if (rigid_dof_grain.empty())
         return;
       const Quadrature<dim> nodes(fe.get_unit_support_points());
       FEValues<dim>  fe_values(fe, nodes, update_quadrature_points);
@@ -885,12 +896,14 @@ namespace softsand
     {
       if (solid_field == nullptr)
         return;
+      // Constrained nodes: the discrete reaction of their rows; with
+      // constrained interiors it adds to the penalty reaction below (which
+      // vanishes inside, where u = u_s), and the two together are the force
+      // of the fluid on the grain.
+      for (const auto &[grain, point, force] : rigid_reactions)
+        f(grain, point, force);
       if (rigid_nodes())
-        {
-          for (const auto &[grain, point, force] : rigid_reactions)
-            f(grain, point, force);
-          return;
-        }
+        return;
       const FEValuesExtractors::Vector velocities(0);
       std::vector<Tensor<1, dim>>      u;
       for_each_covered_cell(

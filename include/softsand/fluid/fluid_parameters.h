@@ -32,6 +32,9 @@ namespace softsand
       /// Rigid nodes: nodes within radius + offset * (node spacing) of a
       /// grain centre are constrained (dimensionless offset).
       double rigid_node_offset = 0.25;
+      /// Penalization: constrain the velocity nodes of cells wholly inside
+      /// a grain (the Theta -> infinity limit there), penalize cut cells.
+      bool constrain_grain_interiors = true;
       /// Body force per unit volume (N/m^3), a function of x, y, z, t.
       std::string body_force = "0; 0; 0";
 

@@ -194,6 +194,16 @@ namespace softsand
       compute_rigid_reactions(const Assembly     kind,
                               const double       time_step,
                               const unsigned int bdf_order);
+      /// Penalization with the nodes of cells wholly inside a grain
+      /// constrained to its rigid velocity.
+      bool
+      constrained_interiors() const
+      {
+        return solid_field != nullptr &&
+               fluid_parameters.solid_model ==
+                 FluidParameters::SolidModel::penalization &&
+               fluid_parameters.constrain_grain_interiors;
+      }
       bool
       rigid_nodes() const
       {
