@@ -19,12 +19,9 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
-  std::ifstream     in(SOURCE_DIR "/../parameters/drag_sphere.prm");
   std::stringstream text;
-  text << in.rdbuf()
-       << "subsection mesh\n set cells per diameter = 4\nend\n"
-          "subsection output\n set directory = results\n"
-          " set write vtu = false\n set verbosity = quiet\nend\n";
+  text << scene_text("drag_sphere")
+       << "subsection mesh\n set cells per diameter = 4\nend\n";
 
   const auto parallel = run_scene<3>(text.str(), MPI_COMM_WORLD);
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);

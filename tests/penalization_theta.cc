@@ -18,13 +18,10 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
-  std::ifstream     in(SOURCE_DIR "/../parameters/drag_sphere.prm");
   std::stringstream base;
-  base << in.rdbuf()
+  base << scene_text("drag_sphere")
        << "subsection mesh\n set cells per diameter = 4\nend\n"
-          "subsection fluid\n set solid model = penalization\nend\n"
-          "subsection output\n set directory = results\n"
-          " set write vtu = false\n set verbosity = quiet\nend\n";
+          "subsection fluid\n set solid model = penalization\nend\n";
   double       previous       = 0;
   unsigned int max_iterations = 0;
   for (const double theta : {1e2, 1e4, 1e6, 1e8, 1e10})

@@ -20,11 +20,8 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
-  std::ifstream     in(SOURCE_DIR "/../parameters/sc_permeability.prm");
   std::stringstream base;
-  base << in.rdbuf()
-       << "subsection output\n set directory = results\n"
-          " set write vtu = false\n set verbosity = quiet\nend\n";
+  base << scene_text("sc_permeability");
   const double s = 2e-4, mu = 1e-3, U = 1e-4, c = 0.216;
   const double a       = s * std::cbrt(3 * c / (4 * M_PI));
   const double dp_ref  = 6 * M_PI * mu * a * 7.442 * U / (s * s);

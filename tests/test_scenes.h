@@ -8,8 +8,24 @@
 #include <softsand/core/parameters.h>
 #include <softsand/core/simulator.h>
 
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
+
+/// The scene parameters/NAME.prm of the repository with its output sent to
+/// ./results, without VTU files and quiet; later entries may override it.
+inline std::string
+scene_text(const std::string &name)
+{
+  std::ifstream     in(std::string(SOURCE_DIR) + "/../parameters/" + name +
+                   ".prm");
+  std::stringstream text;
+  text << in.rdbuf()
+       << "subsection output\n set directory = results\n"
+          " set write vtu = false\n set verbosity = quiet\nend\n";
+  return text.str();
+}
 
 template <int dim>
 std::map<std::string, double>
