@@ -47,17 +47,6 @@ main(int argc, char **argv)
         "\nend\n"
         "subsection output\n set directory = results\n set write vtu = "
         "false\n set verbosity = quiet\nend\n";
-      const auto   res = run_scene<2>(text);
-      const double eu  = res.at("velocity_l2_error");
-      const double ep  = res.at("pressure_l2_error");
-      deallog << "refinement " << r << " cells " << static_cast<unsigned int>(res.at("cells"))
-              << " velocity L2 " << std::scientific << std::setprecision(3)
-              << eu << " pressure L2 " << ep << std::fixed;
-      if (r > 2)
-        deallog << " orders " << std::setprecision(1) << std::log2(old_u / eu)
-                << ' ' << std::log2(old_p / ep);
-      deallog << std::setprecision(6) << std::endl;
-      old_u = eu;
-      old_p = ep;
+      log_error_row(r, run_scene<2>(text), old_u, old_p);
     }
 }

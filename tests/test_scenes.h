@@ -8,7 +8,11 @@
 #include <softsand/core/parameters.h>
 #include <softsand/core/simulator.h>
 
+#include <deal.II/base/logstream.h>
+
+#include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <string>
@@ -40,6 +44,30 @@ run_scene(const std::string &prm_text, const MPI_Comm comm = MPI_COMM_WORLD)
   core::Simulator<dim> simulator(parameters, comm);
   simulator.run();
   return simulator.results();
+}
+
+/// One row of an order-of-accuracy table in deallog: cells, velocity and
+/// pressure L2 errors and, from the second row on (@p old_u > 0), the
+/// observed orders log2(e_old / e). Updates @p old_u and @p old_p.
+inline void
+log_error_row(const unsigned int                   refinement,
+              const std::map<std::string, double> &results,
+              double                              &old_u,
+              double                              &old_p)
+{
+  using dealii::deallog;
+  const double eu = results.at("velocity_l2_error");
+  const double ep = results.at("pressure_l2_error");
+  deallog << "refinement " << refinement << " cells "
+          << static_cast<unsigned int>(results.at("cells")) << " velocity L2 "
+          << std::scientific << std::setprecision(3) << eu << " pressure L2 "
+          << ep << std::fixed;
+  if (old_u > 0)
+    deallog << " orders " << std::setprecision(1) << std::log2(old_u / eu)
+            << ' ' << std::log2(old_p / ep);
+  deallog << std::setprecision(6) << std::endl;
+  old_u = eu;
+  old_p = ep;
 }
 
 #endif

@@ -103,7 +103,6 @@ namespace softsand
       // that the grain velocity is defined there.
       if (dominant < 0)
         {
-          int dummy;
           std::vector<unsigned int> near;
           grain_locator.grains_near_box(box, near);
           double best = std::numeric_limits<double>::max();
@@ -117,7 +116,6 @@ namespace softsand
                   dominant = k;
                 }
             }
-          (void)dummy;
         }
       return double(covered) / total;
     }
