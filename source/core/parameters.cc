@@ -19,6 +19,7 @@ namespace softsand
       SimulationControl::declare_parameters(prm);
       MeshParameters<dim>::declare_parameters(prm);
       dem::GrainParameters<dim>::declare_parameters(prm);
+      dem::DEMParameters::declare_parameters(prm);
       coupling::VoidFractionParameters::declare_parameters(prm);
       fluid::FluidParameters::declare_parameters(prm);
       fluid::SolverParameters::declare_parameters(prm);
@@ -35,6 +36,7 @@ namespace softsand
       simulation_control.parse_parameters(prm);
       mesh.parse_parameters(prm);
       grains.parse_parameters(prm);
+      dem.parse_parameters(prm);
       void_fraction.parse_parameters(prm);
       fluid.parse_parameters(prm);
       fluid_solver.parse_parameters(prm);

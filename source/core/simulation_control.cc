@@ -12,10 +12,13 @@ namespace softsand
       prm.declare_entry(
         "mode",
         "steady stokes",
-        Patterns::Selection("steady stokes|steady navier stokes|transient"),
+        Patterns::Selection(
+          "steady stokes|steady navier stokes|transient|granular"),
         "steady stokes: one Stokes-Brinkman solve; steady navier stokes: "
         "Newton or Picard iterations to the steady state of the penalized "
-        "scheme; transient: BDF time marching of the paper's Eq. (6).");
+        "scheme; transient: BDF time marching of the paper's Eq. (6); "
+        "granular: grains alone under contacts, walls and gravity (the "
+        "DEM; no fluid system is built).");
       prm.declare_entry("time step",
                         "1e-4",
                         Patterns::Double(0),
@@ -52,7 +55,7 @@ namespace softsand
       mode = (m == "steady stokes") ?
                Mode::steady_stokes :
                (m == "steady navier stokes" ? Mode::steady_navier_stokes :
-                                              Mode::transient);
+                (m == "granular" ? Mode::granular : Mode::transient));
       time_step = prm.get_double("time step");
       if (!(time_step > 0))
         throw_invalid_parameter("simulation control/time step",
@@ -62,10 +65,11 @@ namespace softsand
       max_time_steps         = prm.get_integer("max time steps");
       bdf_order              = (prm.get("time scheme") == "BDF1") ? 1 : 2;
       steady_state_tolerance = prm.get_double("steady state tolerance");
-      if (mode == Mode::transient && !(end_time > 0))
+      if ((mode == Mode::transient || mode == Mode::granular) &&
+          !(end_time > 0))
         throw_invalid_parameter("simulation control/end time",
                                 prm.get("end time"),
-                                "a transient run needs an end time > 0 s");
+                                "a transient or granular run needs an end time > 0 s");
       prm.leave_subsection();
     }
   } // namespace core

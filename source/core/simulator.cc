@@ -5,6 +5,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 
+#include <softsand/core/granular_simulator.h>
 #include <softsand/core/parameter_tools.h>
 #include <softsand/core/simulator.h>
 #include <softsand/coupling/grain_forces.h>
@@ -424,8 +425,25 @@ namespace softsand
         prm.parse_input(filename);
         Parameters<d> parameters;
         parameters.parse_parameters(prm);
-        Simulator<d> simulator(parameters, comm);
-        simulator.run();
+        if (parameters.simulation_control.mode ==
+            SimulationControl::Mode::granular)
+          {
+            if constexpr (d == 3)
+              {
+                GranularSimulator simulator(parameters, comm);
+                simulator.run();
+              }
+            else
+              throw_invalid_parameter("simulation control/mode",
+                                      "granular",
+                                      "granular scenes are 3D (set "
+                                      "dimension = 3)");
+          }
+        else
+          {
+            Simulator<d> simulator(parameters, comm);
+            simulator.run();
+          }
       };
       if (dim == 2)
         run(std::integral_constant<int, 2>());

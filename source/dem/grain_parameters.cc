@@ -55,6 +55,11 @@ namespace softsand
                         "0.3",
                         Patterns::Double(0, 0.74),
                         "source = random: target solid volume fraction.");
+      prm.declare_entry("count",
+                        "0",
+                        Patterns::Integer(0),
+                        "source = random: number of grains to insert (0: "
+                        "fill to the solid fraction).");
       prm.declare_entry("seed",
                         "1",
                         Patterns::Integer(0),
@@ -62,9 +67,14 @@ namespace softsand
       prm.declare_entry("size distribution",
                         "constant",
                         Patterns::Selection(
-                          "constant|uniform|truncated normal|lognormal"),
+                          "constant|uniform|truncated normal|lognormal|discrete"),
                         "Diameter distribution of the random pack.");
       prm.declare_entry("min diameter", "0", Patterns::Double(0), "(m)");
+      prm.declare_entry("discrete diameters", "", Patterns::Anything(),
+                        "size distribution = discrete: the diameters (m), "
+                        "comma-separated.");
+      prm.declare_entry("discrete fractions", "", Patterns::Anything(),
+                        "Mass fractions of those diameters (normalized).");
       prm.declare_entry("max diameter", "0", Patterns::Double(0), "(m)");
       prm.declare_entry("mean diameter", "0", Patterns::Double(0), "(m)");
       prm.declare_entry("diameter standard deviation",
@@ -115,6 +125,29 @@ namespace softsand
                 "each coordinate must exceed the lower corner's");
         }
       solid_fraction    = prm.get_double("solid fraction");
+      count             = prm.get_integer("count");
+      {
+        const auto list = [&](const std::string &entry) {
+          std::vector<double> values;
+          for (const auto &v :
+               Utilities::split_string_list(prm.get(entry), ','))
+            {
+              try
+                {
+                  values.push_back(std::stod(v));
+                }
+              catch (...)
+                {
+                  core::throw_invalid_parameter("grains/" + entry, prm.get(entry),
+                                                "a comma-separated list of "
+                                                "numbers");
+                }
+            }
+          return values;
+        };
+        discrete_diameters = list("discrete diameters");
+        discrete_fractions = list("discrete fractions");
+      }
       seed              = prm.get_integer("seed");
       size_distribution = prm.get("size distribution");
       min_diameter      = prm.get_double("min diameter");
@@ -218,7 +251,12 @@ namespace softsand
             {
               SizeDistribution dist = make_size_distribution(p);
               grains =
-                random_pack(region, dist, p.solid_fraction, p.seed, 100000);
+                random_pack(region,
+                            dist,
+                            p.solid_fraction,
+                            p.seed,
+                            100000,
+                            p.count);
               break;
             }
         }

@@ -306,6 +306,47 @@ namespace softsand
 
 
     SizeDistribution
+    SizeDistribution::discrete(const std::vector<double> &diameters,
+                               const std::vector<double> &mass_fractions)
+    {
+      if (diameters.empty() || diameters.size() != mass_fractions.size())
+        core::throw_invalid_parameter(
+          "grains/discrete fractions",
+          std::to_string(mass_fractions.size()) + " value(s)",
+          "give one mass fraction per entry of 'grains/discrete diameters' (" +
+            std::to_string(diameters.size()) + ")");
+      double total = 0;
+      for (unsigned int k = 0; k < diameters.size(); ++k)
+        {
+          check_positive("grains/discrete diameters", diameters[k]);
+          if (!(mass_fractions[k] >= 0))
+            core::throw_invalid_parameter("grains/discrete fractions",
+                                          str(mass_fractions[k]),
+                                          "fractions must be >= 0");
+          // Number probability of a size: its mass fraction over its mass.
+          total += mass_fractions[k] / std::pow(diameters[k], 3);
+        }
+      if (!(total > 0))
+        core::throw_invalid_parameter("grains/discrete fractions", "all 0",
+                                      "at least one fraction must be > 0");
+      SizeDistribution d(Kind::discrete,
+                         0,
+                         0,
+                         *std::min_element(diameters.begin(), diameters.end()),
+                         *std::max_element(diameters.begin(), diameters.end()));
+      d.sizes = diameters;
+      double sum = 0;
+      for (unsigned int k = 0; k < diameters.size(); ++k)
+        {
+          sum += mass_fractions[k] / std::pow(diameters[k], 3) / total;
+          d.cumulative.push_back(sum);
+        }
+      d.cumulative.back() = 1;
+      return d;
+    }
+
+
+    SizeDistribution
     SizeDistribution::uniform(const double min_diameter,
                               const double max_diameter)
     {
@@ -392,6 +433,14 @@ namespace softsand
         {
           case Kind::constant:
             return a;
+          case Kind::discrete:
+            {
+              const double u = uniform01(rng);
+              for (unsigned int k = 0; k < sizes.size(); ++k)
+                if (u < cumulative[k])
+                  return sizes[k];
+              return sizes.back();
+            }
           case Kind::uniform:
             return lower + (upper - lower) * uniform01(rng);
           case Kind::truncated_normal:
@@ -433,10 +482,14 @@ namespace softsand
                                            p.diameter_sd,
                                            p.min_diameter,
                                            p.max_diameter);
+      if (kind == "discrete")
+        return SizeDistribution::discrete(p.discrete_diameters,
+                                          p.discrete_fractions);
       core::throw_invalid_parameter(
         "grains/size distribution",
         kind,
-        "allowed are constant, uniform, truncated normal and lognormal");
+        "allowed are constant, uniform, truncated normal, lognormal and "
+        "discrete");
     }
 
 
@@ -509,9 +562,10 @@ namespace softsand
                 const SizeDistribution &distribution,
                 const double            solid_fraction,
                 const unsigned int      seed,
-                const unsigned int      max_attempts_per_grain)
+                const unsigned int      max_attempts_per_grain,
+                const unsigned int      count)
     {
-      if (!(solid_fraction > 0 && solid_fraction < 1))
+      if (count == 0 && !(solid_fraction > 0 && solid_fraction < 1))
         core::throw_invalid_parameter("grains/solid fraction",
                                       str(solid_fraction),
                                       "it must lie in (0, 1)");
@@ -546,7 +600,7 @@ namespace softsand
       const double        target = solid_fraction * volume;
       std::vector<double> diameters;
       double              drawn = 0;
-      while (drawn < target)
+      while (count > 0 ? diameters.size() < count : drawn < target)
         {
           const double d = distribution.draw(rng);
           if (d > min_side)
@@ -692,11 +746,13 @@ namespace softsand
                 const SizeDistribution &,
                 const double,
                 const unsigned int,
+                const unsigned int,
                 const unsigned int);
     template std::vector<Grain<3>>
     random_pack(const BoundingBox<3> &,
                 const SizeDistribution &,
                 const double,
+                const unsigned int,
                 const unsigned int,
                 const unsigned int);
 

@@ -6,6 +6,7 @@
 #include <softsand/core/mesh_parameters.h>
 #include <softsand/core/simulation_control.h>
 #include <softsand/coupling/grain_solid_field.h>
+#include <softsand/dem/dem_parameters.h>
 #include <softsand/dem/grain_parameters.h>
 #include <softsand/fluid/boundary_conditions.h>
 #include <softsand/fluid/fluid_parameters.h>
@@ -27,6 +28,7 @@ namespace softsand
       SimulationControl                    simulation_control;
       MeshParameters<dim>                  mesh;
       dem::GrainParameters<dim>            grains;
+      dem::DEMParameters                   dem;
       coupling::VoidFractionParameters     void_fraction;
       fluid::FluidParameters               fluid;
       fluid::SolverParameters              fluid_solver;

@@ -20,7 +20,8 @@ namespace softsand
       {
         steady_stokes,
         steady_navier_stokes,
-        transient
+        transient,
+        granular
       };
 
       Mode         mode = Mode::steady_stokes;
@@ -43,7 +44,7 @@ namespace softsand
       bool
       is_steady() const
       {
-        return mode != Mode::transient;
+        return mode != Mode::transient && mode != Mode::granular;
       }
     };
   } // namespace core

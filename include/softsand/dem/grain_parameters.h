@@ -38,6 +38,9 @@ namespace softsand
       bool        region_is_domain = true;
       Point<dim>  region_lower, region_upper;
       double      solid_fraction = 0.3;
+      /// Random pack: number of grains (0: by solid fraction).
+      unsigned int count = 0;
+      std::vector<double> discrete_diameters, discrete_fractions;
       unsigned int seed          = 1;
       std::string  size_distribution = "constant";
       double       min_diameter = 0, max_diameter = 0, mean_diameter = 0,

@@ -31,7 +31,8 @@ namespace softsand
         constant,
         uniform,
         truncated_normal,
-        lognormal
+        lognormal,
+        discrete
       };
 
       /// All grains of diameter @p diameter.
@@ -60,6 +61,12 @@ namespace softsand
                 const double sd,
                 const double min_diameter,
                 const double max_diameter);
+
+      /// A few sizes @p diameters with mass (volume) fractions
+      /// @p mass_fractions, as LIGGGHTS' particledistribution/discrete.
+      static SizeDistribution
+      discrete(const std::vector<double> &diameters,
+               const std::vector<double> &mass_fractions);
 
       /// One diameter (m).
       double
@@ -97,6 +104,8 @@ namespace softsand
       /// constant: diameter; normal: mean, sd; lognormal: mu, sigma of log d.
       double a, b;
       double lower, upper;
+      /// discrete: the sizes and the cumulative number probabilities.
+      std::vector<double> sizes, cumulative;
     };
 
     /// The distribution chosen by "grains/size distribution" and its
@@ -131,6 +140,8 @@ namespace softsand
      * first: the set of sizes is then exactly the drawn sample (no bias
      * towards small grains that still fit), and the reachable fraction is
      * higher. Overlap tests use a uniform cell list, so the cost is O(N).
+     * If @p count > 0, exactly that many grains are drawn and
+     * @p solid_fraction is ignored.
      * Stops with a message if a grain finds no place in
      * @p max_attempts_per_grain tries (the pack has jammed).
      */
@@ -140,7 +151,8 @@ namespace softsand
                 const SizeDistribution &distribution,
                 const double            solid_fraction,
                 const unsigned int      seed,
-                const unsigned int      max_attempts_per_grain);
+                const unsigned int      max_attempts_per_grain,
+                const unsigned int      count = 0);
 
     /**
      * Check that every grain has a positive radius and its centre in

@@ -1,0 +1,198 @@
+#ifndef softsand_dem_contact_law_h
+#define softsand_dem_contact_law_h
+
+#include <deal.II/base/tensor.h>
+
+#include <softsand/dem/material.h>
+
+#include <cmath>
+
+namespace softsand
+{
+  namespace dem
+  {
+    using namespace dealii;
+
+    /// What a contact remembers between steps: the tangential spring
+    /// displacement and the elastic rolling torque.
+    struct ContactHistory
+    {
+      Tensor<1, 3> shear;
+      Tensor<1, 3> rolling_torque;
+    };
+
+    /// Rolling resistance: none, constant directional torque (CDT), or the
+    /// elastic-plastic spring (EPSD, without dashpot as LIGGGHTS' epsd2).
+    enum class RollingModel
+    {
+      none,
+      constant_torque,
+      elastic_plastic
+    };
+
+    /// The damping factor beta = ln e / sqrt(ln^2 e + pi^2) (<= 0) of
+    /// restitution @p e. With the damping 2 sqrt(5/6) beta sqrt(S_n m*) of a
+    /// Hertz spring this relation is exact: hertz_restitution(beta) = e
+    /// (checked by the test dem_impacts).
+    double
+    damping_factor(const double e);
+
+    /// Restitution of the dimensionless Hertz contact
+    /// x'' + sqrt(5) |beta| x^(1/4) x' + x^(3/2) = 0 (what the contact law
+    /// below gives in the limit of small steps).
+    double
+    hertz_restitution(const double beta);
+
+    /**
+     * The contact law of LIGGGHTS `hertz` + `tangential history` +
+     * `cohesion sjkr` + rolling resistance, for a grain i touching a grain
+     * or a wall j:
+     *   k_n = 4/3 Y* sqrt(R* delta), k_t = 8 G* sqrt(R* delta),
+     *   gamma_{n,t} = -2 sqrt(5/6) beta sqrt(S_{n,t} m*), S_n = 2 Y*
+     *   sqrt(R* delta), S_t = k_t,
+     *   F_n = (k_n delta - gamma_n v_n) n - k A n,
+     *   F_t = -k_t xi - gamma_t v_t, |F_t| <= mu |k_n delta - gamma_n v_n|.
+     * Header-only: this is the innermost loop of the DEM.
+     */
+    class ContactLaw
+    {
+    public:
+      ContactLaw() = default;
+      ContactLaw(const Material &material, const RollingModel rolling);
+
+      /**
+       * Force on i and torques on i and j of one contact.
+       * @p n unit normal from j to i, @p delta overlap (> 0),
+       * @p lever_i / @p lever_j distances from the centres to the contact
+       * point (lever_j = 0 for a wall), @p r_eff, @p m_eff effective radius
+       * and mass, @p v_rel velocity of i relative to j at the contact point,
+       * @p w_rel angular velocity of i minus that of j, @p area the area of
+       * the contact circle (for cohesion).
+       */
+      inline void
+      evaluate(const Tensor<1, 3> &n,
+               const double        delta,
+               const double        lever_i,
+               const double        lever_j,
+               const double        r_eff,
+               const double        m_eff,
+               const Tensor<1, 3> &v_rel,
+               const Tensor<1, 3> &w_rel,
+               const double        area,
+               const double        dt,
+               ContactHistory     &history,
+               Tensor<1, 3>       &force_i,
+               Tensor<1, 3>       &torque_i,
+               Tensor<1, 3>       &torque_j) const;
+
+      /// Elastic normal force 4/3 Y* sqrt(R*) delta^(3/2) (for statistics).
+      double
+      elastic_normal_force(const double r_eff, const double delta) const
+      {
+        return 4. / 3. * y_eff * std::sqrt(r_eff * delta) * delta;
+      }
+
+      double
+      beta() const
+      {
+        return damping_beta;
+      }
+
+    private:
+      double       y_eff = 0, g_eff = 0, damping_beta = 0;
+      double       mu = 0, mu_rolling = 0, cohesion = 0;
+      RollingModel rolling_model = RollingModel::none;
+    };
+
+
+    inline void
+    ContactLaw::evaluate(const Tensor<1, 3> &n,
+                         const double        delta,
+                         const double        lever_i,
+                         const double        lever_j,
+                         const double        r_eff,
+                         const double        m_eff,
+                         const Tensor<1, 3> &v_rel,
+                         const Tensor<1, 3> &w_rel,
+                         const double        area,
+                         const double        dt,
+                         ContactHistory     &history,
+                         Tensor<1, 3>       &force_i,
+                         Tensor<1, 3>       &torque_i,
+                         Tensor<1, 3>       &torque_j) const
+    {
+      constexpr double sqrt_5_6 = 0.91287092917527690;
+      const double     root     = std::sqrt(r_eff * delta);
+      const double     kn       = 4. / 3. * y_eff * root;
+      const double     sn       = 2. * y_eff * root;
+      const double     kt       = 8. * g_eff * root;
+      const double     gamma_n  = -2. * sqrt_5_6 * damping_beta * std::sqrt(sn * m_eff);
+      const double     gamma_t  = -2. * sqrt_5_6 * damping_beta * std::sqrt(kt * m_eff);
+
+      const double       vn   = v_rel * n;
+      const Tensor<1, 3> vt   = v_rel - vn * n;
+      const double       fn   = kn * delta - gamma_n * vn;
+      const double       fcoh = cohesion * area;
+
+      // Tangential spring: rotate into the current tangent plane keeping its
+      // length, then stretch by the tangential displacement of this step.
+      Tensor<1, 3> &xi     = history.shear;
+      const double  xi_len = xi.norm();
+      xi -= (xi * n) * n;
+      const double xi_len_new = xi.norm();
+      if (xi_len_new > 0)
+        xi *= xi_len / xi_len_new;
+      xi += dt * vt;
+      Tensor<1, 3> ft      = -kt * xi - gamma_t * vt;
+      const double ft_len  = ft.norm();
+      const double ft_max  = mu * std::abs(fn);
+      if (ft_len > ft_max)
+        {
+          // Gross sliding: cap at the Coulomb limit and set the spring to
+          // what that force needs, so that sticking resumes smoothly.
+          ft *= (ft_len > 0 ? ft_max / ft_len : 0.);
+          xi = -(ft + gamma_t * vt) / kt;
+        }
+
+      force_i = (fn - fcoh) * n + ft;
+      // Torques of the tangential force about each centre: the contact
+      // point is at -lever_i n from i and +lever_j n from j.
+      const Tensor<1, 3> n_cross_ft = cross_product_3d(n, ft);
+      torque_i = -lever_i * n_cross_ft;
+      torque_j = -lever_j * n_cross_ft;
+
+      if (rolling_model != RollingModel::none && mu_rolling > 0)
+        {
+          const Tensor<1, 3> w_roll  = w_rel - (w_rel * n) * n;
+          const double       limit   = mu_rolling * r_eff * std::abs(fn);
+          Tensor<1, 3>       m_roll;
+          if (rolling_model == RollingModel::constant_torque)
+            {
+              const double w_len = w_roll.norm();
+              if (w_len > 1e-14)
+                m_roll = -(limit / w_len) * w_roll;
+            }
+          else
+            {
+              Tensor<1, 3> &m       = history.rolling_torque;
+              const double  m_len   = m.norm();
+              m -= (m * n) * n;
+              const double m_len_new = m.norm();
+              if (m_len_new > 0)
+                m *= m_len / m_len_new;
+              const double kr =
+                2.25 * kn * mu_rolling * mu_rolling * r_eff * r_eff;
+              m -= kr * dt * w_roll;
+              const double len = m.norm();
+              if (len > limit)
+                m *= limit / len;
+              m_roll = m;
+            }
+          torque_i += m_roll;
+          torque_j -= m_roll;
+        }
+    }
+  } // namespace dem
+} // namespace softsand
+
+#endif

@@ -1,0 +1,183 @@
+#ifndef softsand_dem_granular_dynamics_h
+#define softsand_dem_granular_dynamics_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <softsand/dem/contact_law.h>
+#include <softsand/dem/dem_parameters.h>
+#include <softsand/dem/grain.h>
+#include <softsand/dem/walls.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace softsand
+{
+  namespace dem
+  {
+    using namespace dealii;
+
+    /// Indices of the grain properties carried by the ParticleHandler.
+    namespace property
+    {
+      constexpr unsigned int radius = 0, density = 1, velocity = 2,
+                             angular_velocity = 5, force = 8, torque = 11,
+                             fluid_force = 14, fluid_torque = 17,
+                             contacts = 20, n_properties = 21;
+    }
+
+    /// Whole-system numbers of the current state (all ranks agree).
+    struct GranularStatistics
+    {
+      unsigned int n_grains = 0;
+      double       kinetic_energy = 0;     ///< translational + rotational (J)
+      double       max_overlap = 0;        ///< max delta / R* over contacts
+      double       mean_overlap = 0;       ///< mean delta / R*
+      double       coordination = 0;       ///< 2 grain-grain contacts / grain
+      double       mean_speed = 0;         ///< m/s
+      double       max_speed = 0;          ///< m/s
+      double       packing_fraction = 0;   ///< in the probe box
+    };
+
+    /**
+     * The in-house DEM: spherical grains carried as particles of a deal.II
+     * ParticleHandler on the distributed mesh (so they migrate and are
+     * checkpointed with it), moved by velocity Verlet under Hertz-Mindlin
+     * contacts (ContactLaw), walls, gravity and a held fluid force.
+     *
+     * The contact loop runs on flat arrays copied from the particles (local
+     * grains first, then the ghost grains of neighbouring ranks) and a
+     * Verlet neighbour list built by linked cells of size 2 r_max + skin,
+     * both rebuilt only when some grain moved half the skin; between
+     * rebuilds only the ghosts' positions and velocities are exchanged.
+     * Each rank computes the forces on its own grains, so a contact across
+     * ranks is evaluated on both and needs no reverse communication.
+     *
+     * The mesh's cells must be at least 2 r_max + skin wide wherever grains
+     * are (the granular scene builds such a mesh): deal.II's ghost layer of
+     * one cell is then the contact halo.
+     */
+    class GranularDynamics
+    {
+    public:
+      GranularDynamics(const parallel::distributed::Triangulation<3> &tria,
+                       const DEMParameters                        &parameters,
+                       const BoundingBox<3>                       &domain);
+
+      /// Add grains: every rank passes the same list (or rank 0 alone);
+      /// each grain goes to the rank owning its cell. Ids follow the list.
+      void
+      insert(const std::vector<Grain<3>> &grains, const bool from_all_ranks);
+
+      /// Fix the step (from the parameters or the Rayleigh time) and check
+      /// it; call after insert().
+      void
+      initialize();
+
+      /// One velocity-Verlet step.
+      void
+      step();
+
+      double
+      time() const
+      {
+        return current_time;
+      }
+      double
+      time_step() const
+      {
+        return dt;
+      }
+      /// Rayleigh time of the smallest grain.
+      double
+      rayleigh_time() const
+      {
+        return t_rayleigh;
+      }
+      unsigned long
+      step_number() const
+      {
+        return n_steps;
+      }
+      unsigned long
+      n_neighbor_list_builds() const
+      {
+        return n_builds;
+      }
+      unsigned int
+      n_lost_grains() const
+      {
+        return lost_grains;
+      }
+
+      GranularStatistics
+      statistics(const BoundingBox<3> &probe) const;
+
+      const std::vector<Wall> &
+      get_walls() const
+      {
+        return walls;
+      }
+
+      /// All grains, gathered on every rank, sorted by id.
+      std::vector<Grain<3>>
+      gather_grains() const;
+
+      /// The particles with current properties (for output).
+      const Particles::ParticleHandler<3> &
+      particles();
+
+      const ContactLaw &
+      contact_law() const
+      {
+        return law;
+      }
+
+    private:
+      void
+      copy_from_particles();
+      void
+      copy_to_particles();
+      void
+      rebuild_neighbor_lists();
+      void
+      update_ghosts();
+      void
+      compute_forces();
+
+      const DEMParameters &parameters;
+      MPI_Comm             comm;
+      const bool           parallel;
+      const parallel::distributed::Triangulation<3> &triangulation;
+      BoundingBox<3>       domain;
+      Particles::ParticleHandler<3> particle_handler;
+      ContactLaw           law;
+      std::vector<Wall>    walls;
+
+      double        dt = 0, t_rayleigh = 0, current_time = 0;
+      unsigned long n_steps = 0, n_builds = 0;
+      unsigned int  lost_grains = 0;
+      double        skin = 0, r_max = 0;
+
+      // Flat state: local grains [0, n_local), then ghosts.
+      unsigned int                       n_local = 0;
+      std::vector<types::particle_index> id;
+      std::vector<Point<3>>              x, x_at_build;
+      std::vector<Tensor<1, 3>>          v, w, f, t, f_fluid, t_fluid;
+      std::vector<Tensor<1, 3>>          f_old, t_old;
+      std::vector<double>                radius, mass, inv_mass, inv_inertia;
+      std::vector<unsigned int>          n_contacts;
+
+      /// Neighbour pairs (i < j in id order of the history) and the history
+      /// of each; histories of the grain-wall contacts per local grain.
+      std::vector<std::pair<unsigned int, unsigned int>> pairs;
+      std::vector<ContactHistory>                        pair_history;
+      std::vector<ContactHistory>                        wall_history;
+    };
+  } // namespace dem
+} // namespace softsand
+
+#endif

@@ -1,0 +1,112 @@
+#ifndef softsand_dem_walls_h
+#define softsand_dem_walls_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <string>
+#include <vector>
+
+namespace softsand
+{
+  namespace dem
+  {
+    using namespace dealii;
+
+    /**
+     * A rigid plane or cylinder that grains touch on one side. Planes are
+     * fixed, move at a prescribed velocity, or are servo-controlled: they
+     * move along their normal so that the grains' pressure on them reaches
+     * a target (PI control, velocity limited), the way a triaxial cell's
+     * pistons are driven.
+     */
+    struct Wall
+    {
+      enum class Shape
+      {
+        plane,
+        cylinder
+      };
+      enum class Motion
+      {
+        fixed,
+        velocity,
+        servo
+      };
+
+      std::string  name;
+      Shape        shape  = Shape::plane;
+      Motion       motion = Motion::fixed;
+      /// Plane: a point on it; cylinder: a point on the axis.
+      Point<3>     point;
+      /// Plane: unit normal pointing to the grains' side; cylinder: unit axis.
+      Tensor<1, 3> normal;
+      /// Cylinder radius (grains inside).
+      double       radius = 0;
+      /// Current velocity (prescribed, or the servo's output).
+      Tensor<1, 3> velocity;
+
+      /// Servo: target pressure (Pa), loaded area (m^2), velocity limit
+      /// (m/s), gains (proportional: dimensionless, integral: 1/s).
+      double target_pressure = 0, area = 1, max_velocity = 0;
+      double proportional_gain = 1, integral_gain = 0, error_integral = 0;
+
+      /// Force that the grains exert on the wall in the last step (N).
+      Tensor<1, 3> force;
+
+      /// Grains' pressure on a plane: force along -normal over its area.
+      double
+      pressure() const
+      {
+        return -(force * normal) / area;
+      }
+
+      /// Overlap of a sphere (centre @p x, radius @p r) with the wall and
+      /// the unit normal from the wall to the sphere; overlap <= 0: apart.
+      inline double
+      overlap(const Point<3> &x, const double r, Tensor<1, 3> &n) const
+      {
+        if (shape == Shape::plane)
+          {
+            n = normal;
+            return r - (x - point) * normal;
+          }
+        Tensor<1, 3> radial = (x - point);
+        radial -= (radial * normal) * normal;
+        const double rho = radial.norm();
+        n                = (rho > 0 ? -radial / rho : Tensor<1, 3>());
+        return r - (radius - rho);
+      }
+
+      /// Servo update from the force measured this step, then move.
+      void
+      advance(const double dt);
+    };
+
+    /// Wall set of a scene: box faces, an octagon of pistons, and a list.
+    struct WallParameters
+    {
+      std::string box_faces;
+      std::string list;
+      /// Octagon: centre (x, y), inradius, and whether the pistons are
+      /// servo-driven to the servo pressure.
+      std::vector<double> octagon;
+      bool        octagon_servo = false;
+      double      servo_pressure = 0, servo_max_velocity = 0.01;
+      double      servo_proportional_gain = 1, servo_integral_gain = 0;
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+      void
+      parse_parameters(ParameterHandler &prm);
+    };
+
+    /// Build the walls of a scene in the box @p domain.
+    std::vector<Wall>
+    create_walls(const WallParameters &parameters, const BoundingBox<3> &domain);
+  } // namespace dem
+} // namespace softsand
+
+#endif

@@ -1,0 +1,217 @@
+#include <deal.II/base/timer.h>
+#include <deal.II/grid/grid_generator.h>
+
+#include <softsand/core/granular_simulator.h>
+#include <softsand/core/parameter_tools.h>
+#include <softsand/dem/pack_generators.h>
+#include <softsand/io/grain_file.h>
+#include <softsand/io/grain_output.h>
+#include <softsand/io/statistics_file.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+
+namespace softsand
+{
+  namespace core
+  {
+    GranularSimulator::GranularSimulator(const Parameters<3> &parameters,
+                                         const MPI_Comm       comm)
+      : parameters(parameters)
+      , mpi_communicator(comm)
+      , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+      , progress(std::cout,
+                 Utilities::MPI::this_mpi_process(comm) == 0 &&
+                   parameters.output.verbosity !=
+                     io::OutputParameters::Verbosity::quiet)
+      , triangulation(comm)
+    {}
+
+
+    void
+    GranularSimulator::make_mesh(const double cell_size)
+    {
+      const auto &m = parameters.mesh;
+      std::vector<unsigned int> cells(3);
+      for (unsigned int d = 0; d < 3; ++d)
+        cells[d] = std::clamp(static_cast<unsigned int>(
+                                (m.upper_corner[d] - m.lower_corner[d]) /
+                                cell_size),
+                              1u,
+                              64u);
+      GridGenerator::subdivided_hyper_rectangle(
+        triangulation, cells, m.lower_corner, m.upper_corner, true);
+    }
+
+
+    void
+    GranularSimulator::run()
+    {
+      const auto &p = parameters;
+      const auto &dp = p.dem;
+      Timer       wall_clock;
+      if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        std::filesystem::create_directories(p.output.directory);
+      MPI_Barrier(mpi_communicator);
+
+      const BoundingBox<3> domain(
+        std::make_pair(p.mesh.lower_corner, p.mesh.upper_corner));
+      const std::vector<dem::Grain<3>> grains =
+        dem::create_grains(p.grains, domain);
+      double r_max = 0;
+      for (const auto &g : grains)
+        r_max = std::max(r_max, g.radius);
+      make_mesh(std::max(2 * r_max * (1 + 0.5 * dp.skin_fraction),
+                         1e-300));
+
+      dem = std::make_unique<dem::GranularDynamics>(triangulation, dp, domain);
+      dem->insert(grains, true);
+      dem->initialize();
+
+      const BoundingBox<3> probe =
+        dp.probe_box.empty() ?
+          domain :
+          BoundingBox<3>(std::make_pair(
+            Point<3>(dp.probe_box[0], dp.probe_box[1], dp.probe_box[2]),
+            Point<3>(dp.probe_box[3], dp.probe_box[4], dp.probe_box[5])));
+
+      progress << "softsand granular: "
+               << Utilities::MPI::n_mpi_processes(mpi_communicator)
+               << " MPI rank(s), " << grains.size() << " grain(s), "
+               << dem->get_walls().size() << " wall(s), dt = "
+               << dem->time_step() << " s = "
+               << (dem->rayleigh_time() > 0 ?
+                     dem->time_step() / dem->rayleigh_time() :
+                     0.)
+               << " Rayleigh time" << std::endl;
+
+      io::StatisticsFile statistics(p.output.directory + "/statistics.txt",
+                                    mpi_communicator);
+      std::unique_ptr<io::GrainOutput> output;
+      if (p.output.write_vtu)
+        output = std::make_unique<io::GrainOutput>(p.output.directory, "grains");
+
+      dem::GranularStatistics s;
+      const auto record = [&]() {
+        s = dem->statistics(probe);
+        statistics.add_value("time", dem->time());
+        statistics.add_value("step", dem->step_number());
+        statistics.add_value("kinetic_energy", s.kinetic_energy);
+        statistics.add_value("mean_speed", s.mean_speed);
+        statistics.add_value("max_speed", s.max_speed);
+        statistics.add_value("max_overlap_ratio", s.max_overlap);
+        statistics.add_value("mean_overlap_ratio", s.mean_overlap);
+        statistics.add_value("coordination", s.coordination);
+        statistics.add_value("packing_fraction", s.packing_fraction);
+        statistics.add_value("grains", s.n_grains);
+        statistics.add_value("lost_grains",
+                             Utilities::MPI::sum(dem->n_lost_grains(),
+                                                 mpi_communicator));
+        statistics.add_value("neighbor_list_builds",
+                             dem->n_neighbor_list_builds());
+        for (const auto &wall : dem->get_walls())
+          {
+            statistics.add_value(wall.name + "_force_normal",
+                                 -(wall.force * wall.normal));
+            if (wall.shape == dem::Wall::Shape::plane)
+              {
+                statistics.add_value(wall.name + "_pressure", wall.pressure());
+                statistics.add_value(wall.name + "_position",
+                                     wall.point * wall.normal);
+              }
+          }
+        statistics.add_value("wall_time", wall_clock.wall_time());
+        statistics.write_row();
+      };
+      const auto write_grains = [&]() {
+        if (output)
+          output->write(dem->particles(), dem->time(), mpi_communicator);
+      };
+
+      record();
+      write_grains();
+      const double end_time = p.simulation_control.end_time;
+      const unsigned long max_steps =
+        static_cast<unsigned long>(std::ceil(end_time / dem->time_step() - 1e-9));
+      unsigned int settled_rows = 0;
+      bool         settled      = false;
+      double       next_report  = 10;
+      while (dem->step_number() < max_steps)
+        {
+          dem->step();
+          const unsigned long n = dem->step_number();
+          if (n % dp.statistics_interval == 0 || n == max_steps)
+            {
+              record();
+              if (dp.settled_kinetic_energy > 0 && s.n_grains > 0 &&
+                  s.kinetic_energy / s.n_grains < dp.settled_kinetic_energy)
+                {
+                  if (++settled_rows >= dp.settled_checks)
+                    settled = true;
+                }
+              else
+                settled_rows = 0;
+            }
+          if (dp.output_interval > 0 && n % dp.output_interval == 0)
+            write_grains();
+          if (wall_clock.wall_time() > next_report)
+            {
+              progress << "  t = " << dem->time() << " s, step " << n << " of "
+                       << max_steps << ", kinetic energy "
+                       << s.kinetic_energy << " J, "
+                       << std::setprecision(3)
+                       << n * s.n_grains / wall_clock.wall_time()
+                       << " grain-steps/s" << std::setprecision(6)
+                       << std::endl;
+              next_report += 10;
+            }
+          if (settled)
+            break;
+        }
+      if (dem->step_number() % dp.statistics_interval != 0 &&
+          dem->step_number() != max_steps)
+        record();
+      write_grains();
+
+      if (!dp.save_pack.empty())
+        {
+          const auto final_grains = dem->gather_grains();
+          if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+            io::write_grain_file<3>(p.output.directory + "/" + dp.save_pack,
+                                    final_grains);
+        }
+
+      const double elapsed = wall_clock.wall_time();
+      last_results = {{"time", dem->time()},
+                      {"steps", double(dem->step_number())},
+                      {"grains", double(s.n_grains)},
+                      {"kinetic_energy", s.kinetic_energy},
+                      {"mean_speed", s.mean_speed},
+                      {"max_overlap_ratio", s.max_overlap},
+                      {"mean_overlap_ratio", s.mean_overlap},
+                      {"coordination", s.coordination},
+                      {"packing_fraction", s.packing_fraction},
+                      {"settled", settled ? 1. : 0.},
+                      {"lost_grains", double(Utilities::MPI::sum(
+                                        dem->n_lost_grains(), mpi_communicator))},
+                      {"wall_time", elapsed}};
+      for (const auto &wall : dem->get_walls())
+        if (wall.shape == dem::Wall::Shape::plane)
+          last_results[wall.name + "_pressure"] = wall.pressure();
+
+      progress << "softsand granular: " << dem->step_number() << " steps in "
+               << elapsed << " s: "
+               << dem->step_number() * double(s.n_grains) / elapsed
+               << " grain-steps/s, " << dem->n_neighbor_list_builds()
+               << " neighbour-list builds"
+               << (settled ? ", settled" : "") << std::endl;
+      pcout << "Results (granular):" << std::endl;
+      for (const auto &[name, value] : last_results)
+        if (name != "wall_time")
+          pcout << "  " << std::left << std::setw(24) << name << " "
+                << std::scientific << std::setprecision(5) << value
+                << std::defaultfloat << std::endl;
+    }
+  } // namespace core
+} // namespace softsand

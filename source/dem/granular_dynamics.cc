@@ -1,0 +1,675 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <softsand/core/parameter_tools.h>
+#include <softsand/dem/granular_dynamics.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+namespace softsand
+{
+  namespace dem
+  {
+    namespace
+    {
+      const MappingQ1<3> &
+      mapping()
+      {
+        static const MappingQ1<3> m;
+        return m;
+      }
+
+      inline std::uint64_t
+      pair_key(const types::particle_index a, const types::particle_index b)
+      {
+        return (static_cast<std::uint64_t>(a) << 32) ^
+               static_cast<std::uint64_t>(b);
+      }
+
+      inline Tensor<1, 3>
+      read_tensor(const ArrayView<const double> &p, const unsigned int first)
+      {
+        return Tensor<1, 3>({p[first], p[first + 1], p[first + 2]});
+      }
+
+      inline void
+      write_tensor(const Tensor<1, 3>      &value,
+                   const ArrayView<double> &p,
+                   const unsigned int       first)
+      {
+        for (unsigned int d = 0; d < 3; ++d)
+          p[first + d] = value[d];
+      }
+
+      std::string
+      str(const double v)
+      {
+        std::ostringstream s;
+        s << v;
+        return s.str();
+      }
+    } // namespace
+
+
+    GranularDynamics::GranularDynamics(
+      const parallel::distributed::Triangulation<3> &tria,
+      const DEMParameters                         &parameters,
+      const BoundingBox<3>                        &domain)
+      : parameters(parameters)
+      , comm(tria.get_communicator())
+      , parallel(Utilities::MPI::n_mpi_processes(comm) > 1)
+      , triangulation(tria)
+      , domain(domain)
+      , particle_handler(tria, mapping(), property::n_properties)
+      , law(parameters.material, parameters.rolling_model)
+      , walls(create_walls(parameters.walls, domain))
+    {
+      particle_handler.signals.particle_lost.connect(
+        [this](const auto &, const auto &) { ++lost_grains; });
+    }
+
+
+    void
+    GranularDynamics::insert(const std::vector<Grain<3>> &grains,
+                             const bool                   from_all_ranks)
+    {
+      // Every rank sees the list (broadcast from rank 0 if only it has
+      // one) and keeps the grains in its own cells. Insertion by point
+      // location on each rank; deal.II 9.4's insert_global_particles() hangs
+      // when some ranks pass no points.
+      std::vector<Grain<3>> all = grains;
+      if (!from_all_ranks && parallel)
+        {
+          const auto parts = Utilities::MPI::all_gather(comm, [&]() {
+            std::vector<double> flat;
+            for (const auto &g : grains)
+              {
+                for (unsigned int d = 0; d < 3; ++d)
+                  flat.push_back(g.center[d]);
+                flat.push_back(g.radius);
+                for (unsigned int d = 0; d < 3; ++d)
+                  flat.push_back(g.velocity[d]);
+                for (unsigned int d = 0; d < 3; ++d)
+                  flat.push_back(g.angular_velocity[d]);
+              }
+            return flat;
+          }());
+          all.clear();
+          for (const auto &part : parts)
+            for (unsigned int k = 0; k + 10 <= part.size(); k += 10)
+              {
+                Grain<3> g;
+                for (unsigned int d = 0; d < 3; ++d)
+                  {
+                    g.center[d]           = part[k + d];
+                    g.velocity[d]         = part[k + 4 + d];
+                    g.angular_velocity[d] = part[k + 7 + d];
+                  }
+                g.radius = part[k + 3];
+                all.push_back(g);
+              }
+        }
+      const types::particle_index first = particle_handler.n_global_particles();
+      GridTools::Cache<3> cache(triangulation, mapping());
+      typename Triangulation<3>::active_cell_iterator hint;
+      std::vector<double> p(property::n_properties, 0.);
+      for (unsigned int g = 0; g < all.size(); ++g)
+        {
+          const auto found = GridTools::find_active_cell_around_point(
+            cache, all[g].center, hint);
+          if (found.first.state() != IteratorState::valid ||
+              !found.first->is_locally_owned())
+            continue;
+          hint = found.first;
+          std::fill(p.begin(), p.end(), 0.);
+          p[property::radius]  = all[g].radius;
+          p[property::density] = parameters.material.density;
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              p[property::velocity + d]         = all[g].velocity[d];
+              p[property::angular_velocity + d] = all[g].angular_velocity[d];
+            }
+          particle_handler.insert_particle(all[g].center,
+                                           found.second,
+                                           first + g,
+                                           found.first,
+                                           ArrayView<const double>(p));
+        }
+      particle_handler.update_cached_numbers();
+      const unsigned int expected = all.size();
+      AssertThrow(particle_handler.n_global_particles() == first + expected,
+                  ExcMessage("Of " + std::to_string(expected) +
+                             " grains, only " +
+                             std::to_string(particle_handler.n_global_particles() -
+                                            first) +
+                             " have their centre inside the mesh box; every "
+                             "grain must start inside the domain (and each is inserted "
+                             "once)."));
+    }
+
+
+    void
+    GranularDynamics::initialize()
+    {
+      double r_min = std::numeric_limits<double>::max();
+      r_max        = 0;
+      for (const auto &particle : particle_handler)
+        {
+          const double r = particle.get_properties()[property::radius];
+          AssertThrow(r > 0,
+                      ExcMessage("Grain " + std::to_string(particle.get_id()) +
+                                 " has radius " + str(r) +
+                                 " m: radii must be > 0."));
+          r_min = std::min(r_min, r);
+          r_max = std::max(r_max, r);
+        }
+      r_min = Utilities::MPI::min(r_min, comm);
+      r_max = Utilities::MPI::max(r_max, comm);
+      skin  = parameters.skin_fraction * std::max(r_max, 1e-300);
+
+      t_rayleigh = parameters.material.rayleigh_time(r_min);
+      if (particle_handler.n_global_particles() == 0)
+        t_rayleigh = 0;
+      dt = parameters.time_step;
+      if (dt == 0)
+        {
+          AssertThrow(t_rayleigh > 0,
+                      ExcMessage("dem/time step = 0 asks for the automatic "
+                                 "step, but a scene without grains has no "
+                                 "Rayleigh time: set the time step."));
+          dt = parameters.automatic_rayleigh_fraction * t_rayleigh;
+        }
+      else if (t_rayleigh > 0 &&
+               dt > parameters.max_rayleigh_fraction * t_rayleigh)
+        core::throw_invalid_parameter(
+          "dem/time step",
+          str(dt),
+          "it is " + str(dt / t_rayleigh) +
+            " of the Rayleigh time " + str(t_rayleigh) +
+            " s of the smallest grain (radius " + str(r_min) +
+            " m); the limit 'dem/max rayleigh fraction' is " +
+            str(parameters.max_rayleigh_fraction) +
+            ": take dt <= " +
+            str(parameters.max_rayleigh_fraction * t_rayleigh) +
+            " s or 0 for the automatic step");
+
+      rebuild_neighbor_lists();
+      compute_forces();
+    }
+
+
+    void
+    GranularDynamics::copy_from_particles()
+    {
+      n_local                  = particle_handler.n_locally_owned_particles();
+      const unsigned int total = n_local + (parallel ? std::distance(
+                                                         particle_handler.begin_ghost(),
+                                                         particle_handler.end_ghost()) :
+                                                       0);
+      id.resize(total);
+      x.resize(total);
+      for (auto *a : {&v, &w, &f, &t, &f_fluid, &t_fluid})
+        a->resize(total);
+      radius.resize(total);
+      mass.resize(total);
+      inv_mass.resize(total);
+      inv_inertia.resize(total);
+      n_contacts.assign(total, 0);
+
+      const auto read = [&](const auto &particle, const unsigned int i) {
+        const ArrayView<const double> p = particle.get_properties();
+        id[i]     = particle.get_id();
+        x[i]      = particle.get_location();
+        radius[i] = p[property::radius];
+        mass[i]   = p[property::density] * 4. / 3. * M_PI * std::pow(radius[i], 3);
+        inv_mass[i]    = 1. / mass[i];
+        inv_inertia[i] = 1. / (0.4 * mass[i] * radius[i] * radius[i]);
+        v[i]       = read_tensor(p, property::velocity);
+        w[i]       = read_tensor(p, property::angular_velocity);
+        f[i]       = read_tensor(p, property::force);
+        t[i]       = read_tensor(p, property::torque);
+        f_fluid[i] = read_tensor(p, property::fluid_force);
+        t_fluid[i] = read_tensor(p, property::fluid_torque);
+      };
+      unsigned int i = 0;
+      for (const auto &particle : particle_handler)
+        read(particle, i++);
+      if (parallel)
+        for (auto it = particle_handler.begin_ghost();
+             it != particle_handler.end_ghost();
+             ++it)
+          read(*it, i++);
+    }
+
+
+    void
+    GranularDynamics::copy_to_particles()
+    {
+      unsigned int i = 0;
+      for (auto &particle : particle_handler)
+        {
+          particle.set_location(x[i]);
+          const ArrayView<double> p = particle.get_properties();
+          write_tensor(v[i], p, property::velocity);
+          write_tensor(w[i], p, property::angular_velocity);
+          write_tensor(f[i], p, property::force);
+          write_tensor(t[i], p, property::torque);
+          write_tensor(f_fluid[i], p, property::fluid_force);
+          write_tensor(t_fluid[i], p, property::fluid_torque);
+          p[property::contacts] = n_contacts[i];
+          ++i;
+        }
+    }
+
+
+    void
+    GranularDynamics::update_ghosts()
+    {
+      copy_to_particles();
+      particle_handler.update_ghost_particles();
+      unsigned int i = n_local;
+      for (auto it = particle_handler.begin_ghost();
+           it != particle_handler.end_ghost();
+           ++it, ++i)
+        {
+          const ArrayView<const double> p = it->get_properties();
+          x[i] = it->get_location();
+          v[i] = read_tensor(p, property::velocity);
+          w[i] = read_tensor(p, property::angular_velocity);
+          f[i] = read_tensor(p, property::force);
+          t[i] = read_tensor(p, property::torque);
+        }
+    }
+
+
+    void
+    GranularDynamics::rebuild_neighbor_lists()
+    {
+      // Remember the histories of open contacts by grain ids.
+      std::unordered_map<std::uint64_t, ContactHistory> old_pairs;
+      for (unsigned int k = 0; k < pairs.size(); ++k)
+        if (pair_history[k].shear.norm_square() > 0 ||
+            pair_history[k].rolling_torque.norm_square() > 0)
+          old_pairs.emplace(pair_key(id[pairs[k].first], id[pairs[k].second]),
+                            pair_history[k]);
+      const unsigned int n_walls = walls.size();
+      std::unordered_map<types::particle_index, unsigned int> old_local;
+      std::vector<ContactHistory> old_wall_history;
+      if (n_walls > 0)
+        {
+          for (unsigned int i = 0; i < n_local; ++i)
+            old_local.emplace(id[i], i);
+          old_wall_history.swap(wall_history);
+        }
+
+      if (!x.empty())
+        copy_to_particles();
+      particle_handler.sort_particles_into_subdomains_and_cells();
+      if (parallel)
+        particle_handler.exchange_ghost_particles(true);
+      copy_from_particles();
+      x_at_build = x;
+      ++n_builds;
+
+      // Linked cells of size 2 r_max + skin over local and ghost grains.
+      const unsigned int total = x.size();
+      pairs.clear();
+      if (total > 0)
+        {
+          Point<3> lo = x[0], hi = x[0];
+          for (const auto &p : x)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                lo[d] = std::min(lo[d], p[d]);
+                hi[d] = std::max(hi[d], p[d]);
+              }
+          double size = 2 * r_max + skin;
+          std::array<unsigned int, 3> n_cells;
+          for (;;)
+            {
+              std::size_t product = 1;
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  n_cells[d] = 1 + static_cast<unsigned int>((hi[d] - lo[d]) / size);
+                  product *= n_cells[d];
+                }
+              if (product <= 8 * std::size_t(total) + 64)
+                break;
+              size *= 1.5; // sparse grains: fewer, larger cells
+            }
+          const auto cell_of = [&](const Point<3> &p) {
+            unsigned int c[3];
+            for (unsigned int d = 0; d < 3; ++d)
+              c[d] = std::min(n_cells[d] - 1,
+                              static_cast<unsigned int>((p[d] - lo[d]) / size));
+            return (c[2] * n_cells[1] + c[1]) * n_cells[0] + c[0];
+          };
+          const unsigned int n_all = n_cells[0] * n_cells[1] * n_cells[2];
+          std::vector<unsigned int> start(n_all + 1, 0), cell(total), order(total);
+          for (unsigned int i = 0; i < total; ++i)
+            {
+              cell[i] = cell_of(x[i]);
+              ++start[cell[i] + 1];
+            }
+          for (unsigned int c = 0; c < n_all; ++c)
+            start[c + 1] += start[c];
+          {
+            std::vector<unsigned int> fill(start.begin(), start.end() - 1);
+            for (unsigned int i = 0; i < total; ++i)
+              order[fill[cell[i]]++] = i;
+          }
+          for (unsigned int i = 0; i < total; ++i)
+            {
+              const unsigned int c  = cell[i];
+              const int          cx = c % n_cells[0];
+              const int          cy = (c / n_cells[0]) % n_cells[1];
+              const int          cz = c / (n_cells[0] * n_cells[1]);
+              for (int dz = -1; dz <= 1; ++dz)
+                for (int dy = -1; dy <= 1; ++dy)
+                  for (int dx = -1; dx <= 1; ++dx)
+                    {
+                      const int nx = cx + dx, ny = cy + dy, nz = cz + dz;
+                      if (nx < 0 || ny < 0 || nz < 0 ||
+                          nx >= int(n_cells[0]) || ny >= int(n_cells[1]) ||
+                          nz >= int(n_cells[2]))
+                        continue;
+                      const unsigned int nc =
+                        (nz * n_cells[1] + ny) * n_cells[0] + nx;
+                      for (unsigned int k = start[nc]; k < start[nc + 1]; ++k)
+                        {
+                          const unsigned int j = order[k];
+                          if (j <= i || (i >= n_local && j >= n_local))
+                            continue;
+                          const double reach = radius[i] + radius[j] + skin;
+                          if (x[i].distance_square(x[j]) < reach * reach)
+                            {
+                              if (id[i] < id[j])
+                                pairs.emplace_back(i, j);
+                              else
+                                pairs.emplace_back(j, i);
+                            }
+                        }
+                    }
+            }
+          // Memory order of the pairs follows the grains: better cache use.
+          std::sort(pairs.begin(), pairs.end(), [](const auto &a, const auto &b) {
+            return std::min(a.first, a.second) < std::min(b.first, b.second);
+          });
+        }
+      pair_history.assign(pairs.size(), ContactHistory());
+      if (!old_pairs.empty())
+        for (unsigned int k = 0; k < pairs.size(); ++k)
+          {
+            const auto it =
+              old_pairs.find(pair_key(id[pairs[k].first], id[pairs[k].second]));
+            if (it != old_pairs.end())
+              pair_history[k] = it->second;
+          }
+      wall_history.assign(n_local * n_walls, ContactHistory());
+      if (n_walls > 0 && !old_wall_history.empty())
+        for (unsigned int i = 0; i < n_local; ++i)
+          {
+            const auto it = old_local.find(id[i]);
+            if (it != old_local.end())
+              for (unsigned int k = 0; k < n_walls; ++k)
+                wall_history[i * n_walls + k] =
+                  old_wall_history[it->second * n_walls + k];
+          }
+    }
+
+
+    void
+    GranularDynamics::compute_forces()
+    {
+      const Tensor<1, 3> &g = parameters.gravity;
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          f[i]          = mass[i] * g + f_fluid[i];
+          t[i]          = t_fluid[i];
+          n_contacts[i] = 0;
+        }
+      const bool cohesive = parameters.material.cohesion_energy_density > 0;
+
+      Tensor<1, 3> force, torque_i, torque_j;
+      for (unsigned int k = 0; k < pairs.size(); ++k)
+        {
+          const unsigned int i   = pairs[k].first;
+          const unsigned int j   = pairs[k].second;
+          const Tensor<1, 3> d   = x[i] - x[j];
+          const double       rs  = radius[i] + radius[j];
+          const double       d2  = d.norm_square();
+          ContactHistory    &h   = pair_history[k];
+          if (d2 >= rs * rs)
+            {
+              h = ContactHistory();
+              continue;
+            }
+          const double       dist  = std::sqrt(d2);
+          const Tensor<1, 3> n     = d / dist;
+          const double       delta = rs - dist;
+          const double       li    = radius[i] - 0.5 * delta;
+          const double       lj    = radius[j] - 0.5 * delta;
+          const double       r_eff = radius[i] * radius[j] / rs;
+          const double       m_eff = mass[i] * mass[j] / (mass[i] + mass[j]);
+          const Tensor<1, 3> v_rel =
+            v[i] - v[j] - cross_product_3d(li * w[i] + lj * w[j], n);
+          double area = 0;
+          if (cohesive)
+            {
+              const double ri2 = radius[i] * radius[i], rj2 = radius[j] * radius[j];
+              const double s   = d2 - rj2 + ri2;
+              area = M_PI * std::max(0., (4 * d2 * ri2 - s * s) / (4 * d2));
+            }
+          law.evaluate(n, delta, li, lj, r_eff, m_eff, v_rel, w[i] - w[j],
+                       area, dt, h, force, torque_i, torque_j);
+          if (i < n_local)
+            {
+              f[i] += force;
+              t[i] += torque_i;
+              ++n_contacts[i];
+            }
+          if (j < n_local)
+            {
+              f[j] -= force;
+              t[j] += torque_j;
+              ++n_contacts[j];
+            }
+        }
+
+      const unsigned int n_walls = walls.size();
+      for (auto &wall : walls)
+        wall.force = 0;
+      for (unsigned int k = 0; k < n_walls; ++k)
+        {
+          Wall &wall = walls[k];
+          for (unsigned int i = 0; i < n_local; ++i)
+            {
+              Tensor<1, 3>   n;
+              const double   delta = wall.overlap(x[i], radius[i], n);
+              ContactHistory &h    = wall_history[i * n_walls + k];
+              if (delta <= 0)
+                {
+                  h = ContactHistory();
+                  continue;
+                }
+              const double       li    = radius[i] - 0.5 * delta;
+              const Tensor<1, 3> v_rel =
+                v[i] - wall.velocity - cross_product_3d(li * w[i], n);
+              const double area =
+                cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
+              law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, w[i],
+                           area, dt, h, force, torque_i, torque_j);
+              f[i] += force;
+              t[i] += torque_i;
+              wall.force -= force;
+            }
+        }
+    }
+
+
+    void
+    GranularDynamics::step()
+    {
+      const double half = 0.5 * dt;
+      double       max_move2 = 0;
+      // Kick, drift, then predict the end-of-step velocity with the old
+      // force (v + dt/2 a_n): the damping and the tangential spring then see
+      // a second-order velocity instead of the half-step one, which keeps
+      // the restitution of strongly damped contacts accurate at 20% of the
+      // Rayleigh time; the final kick corrects with the new force.
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          v[i] += (half * inv_mass[i]) * f[i];
+          w[i] += (half * inv_inertia[i]) * t[i];
+          x[i] += dt * v[i];
+          max_move2 = std::max(max_move2, x[i].distance_square(x_at_build[i]));
+        }
+      current_time += dt;
+      ++n_steps;
+
+      const bool rebuild =
+        (parallel ? Utilities::MPI::max(max_move2, comm) : max_move2) >
+        0.25 * skin * skin;
+      if (rebuild)
+        rebuild_neighbor_lists();
+      else if (parallel)
+        update_ghosts();
+      // After a rebuild the grains may be in a new order (and new ghosts
+      // came): predict from the arrays as they are now.
+      const unsigned int n_all = x.size();
+      for (unsigned int i = 0; i < n_all; ++i)
+        {
+          v[i] += (half * inv_mass[i]) * f[i];
+          w[i] += (half * inv_inertia[i]) * t[i];
+        }
+      f_old.assign(f.begin(), f.begin() + n_local);
+      t_old.assign(t.begin(), t.begin() + n_local);
+
+      compute_forces();
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          v[i] += (half * inv_mass[i]) * (f[i] - f_old[i]);
+          w[i] += (half * inv_inertia[i]) * (t[i] - t_old[i]);
+        }
+
+      if (!walls.empty())
+        {
+          if (parallel)
+            {
+              std::vector<double> forces(3 * walls.size());
+              for (unsigned int k = 0; k < walls.size(); ++k)
+                for (unsigned int d = 0; d < 3; ++d)
+                  forces[3 * k + d] = walls[k].force[d];
+              Utilities::MPI::sum(forces, comm, forces);
+              for (unsigned int k = 0; k < walls.size(); ++k)
+                for (unsigned int d = 0; d < 3; ++d)
+                  walls[k].force[d] = forces[3 * k + d];
+            }
+          for (auto &wall : walls)
+            wall.advance(dt);
+        }
+    }
+
+
+    GranularStatistics
+    GranularDynamics::statistics(const BoundingBox<3> &probe) const
+    {
+      GranularStatistics s;
+      double sums[7] = {0, 0, 0, 0, 0, 0, 0}; // ke, overlap, count, speed, volume, n, contacts
+      double max_overlap = 0, max_speed = 0;
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          const double inertia = 1. / inv_inertia[i];
+          sums[0] += 0.5 * mass[i] * v[i].norm_square() +
+                     0.5 * inertia * w[i].norm_square();
+          const double speed = v[i].norm();
+          sums[3] += speed;
+          max_speed = std::max(max_speed, speed);
+          if (probe.point_inside(x[i]))
+            sums[4] += 4. / 3. * M_PI * std::pow(radius[i], 3);
+          sums[5] += 1;
+        }
+      for (unsigned int k = 0; k < pairs.size(); ++k)
+        {
+          const unsigned int i = pairs[k].first, j = pairs[k].second;
+          // A pair across ranks is seen twice: count it where the first
+          // grain (lower id) is local.
+          if (i >= n_local)
+            continue;
+          const double rs    = radius[i] + radius[j];
+          const double delta = rs - x[i].distance(x[j]);
+          if (delta <= 0)
+            continue;
+          const double ratio = delta / (radius[i] * radius[j] / rs);
+          sums[1] += ratio;
+          sums[2] += 1;
+          max_overlap = std::max(max_overlap, ratio);
+        }
+      Utilities::MPI::sum(ArrayView<const double>(sums, 7),
+                          comm,
+                          ArrayView<double>(sums, 7));
+      s.n_grains       = static_cast<unsigned int>(std::round(sums[5]));
+      s.kinetic_energy = sums[0];
+      s.mean_overlap   = sums[2] > 0 ? sums[1] / sums[2] : 0;
+      s.max_overlap    = Utilities::MPI::max(max_overlap, comm);
+      s.coordination   = s.n_grains > 0 ? 2 * sums[2] / s.n_grains : 0;
+      s.mean_speed     = s.n_grains > 0 ? sums[3] / s.n_grains : 0;
+      s.max_speed      = Utilities::MPI::max(max_speed, comm);
+      s.packing_fraction = sums[4] / probe.volume();
+      return s;
+    }
+
+
+    std::vector<Grain<3>>
+    GranularDynamics::gather_grains() const
+    {
+      std::vector<double> local;
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          local.push_back(id[i]);
+          for (unsigned int d = 0; d < 3; ++d)
+            local.push_back(x[i][d]);
+          local.push_back(radius[i]);
+          for (unsigned int d = 0; d < 3; ++d)
+            local.push_back(v[i][d]);
+          for (unsigned int d = 0; d < 3; ++d)
+            local.push_back(w[i][d]);
+        }
+      const auto all = Utilities::MPI::all_gather(comm, local);
+      std::vector<std::pair<double, Grain<3>>> grains;
+      for (const auto &part : all)
+        for (unsigned int k = 0; k + 10 < part.size() + 1; k += 11)
+          {
+            Grain<3> g;
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                g.center[d]           = part[k + 1 + d];
+                g.velocity[d]         = part[k + 5 + d];
+                g.angular_velocity[d] = part[k + 8 + d];
+              }
+            g.radius = part[k + 4];
+            grains.emplace_back(part[k], g);
+          }
+      std::sort(grains.begin(), grains.end(), [](const auto &a, const auto &b) {
+        return a.first < b.first;
+      });
+      std::vector<Grain<3>> result;
+      for (const auto &g : grains)
+        result.push_back(g.second);
+      return result;
+    }
+
+
+    const Particles::ParticleHandler<3> &
+    GranularDynamics::particles()
+    {
+      copy_to_particles();
+      return particle_handler;
+    }
+  } // namespace dem
+} // namespace softsand

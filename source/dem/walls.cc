@@ -1,0 +1,257 @@
+#include <softsand/core/parameter_tools.h>
+#include <softsand/dem/walls.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace softsand
+{
+  namespace dem
+  {
+    void
+    Wall::advance(const double dt)
+    {
+      if (motion == Motion::servo)
+        {
+          // Positive error: the grains push less than the target, so the
+          // wall moves towards them (along its normal).
+          const double error = (target_pressure - pressure()) / target_pressure;
+          error_integral += error * dt;
+          double speed = max_velocity * (proportional_gain * error +
+                                         integral_gain * error_integral);
+          speed    = std::clamp(speed, -max_velocity, max_velocity);
+          velocity = speed * normal;
+        }
+      if (motion != Motion::fixed)
+        point += dt * velocity;
+    }
+
+
+    void
+    WallParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("walls");
+      prm.declare_entry(
+        "box", "",
+        Patterns::Anything(),
+        "Fixed plane walls on these faces of the mesh box, comma-separated "
+        "from x-, x+, y-, y+, z-, z+ (empty: none; 'all': the six).");
+      prm.declare_entry(
+        "list", "",
+        Patterns::Anything(),
+        "More walls, separated by ';'. Each is one of "
+        "'plane px py pz nx ny nz fixed', "
+        "'plane px py pz nx ny nz velocity vx vy vz', "
+        "'plane px py pz nx ny nz servo' (driven to the servo pressure; the "
+        "normal points to the grains), "
+        "'cylinder px py pz ax ay az radius' (grains inside).");
+      prm.declare_entry(
+        "octagon", "",
+        Patterns::Anything(),
+        "An octagon of 8 pistons (planes normal to the xy plane) of inradius "
+        "R around (cx, cy): 'cx, cy, R'; empty: none. Plates are box walls "
+        "z-, z+.");
+      prm.declare_entry("octagon servo", "false", Patterns::Bool(),
+                        "Drive the octagon's pistons to the servo pressure.");
+      prm.declare_entry("servo pressure", "0", Patterns::Double(0),
+                        "Target pressure of servo walls (Pa).");
+      prm.declare_entry("servo max velocity", "0.01", Patterns::Double(0),
+                        "Speed limit of servo walls (m/s).");
+      prm.declare_entry("servo proportional gain", "1", Patterns::Double(0),
+                        "Wall speed / max speed per relative pressure error.");
+      prm.declare_entry("servo integral gain", "0", Patterns::Double(0),
+                        "Integral gain of the servo (1/s).");
+      prm.leave_subsection();
+    }
+
+
+    void
+    WallParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("walls");
+      box_faces = prm.get("box");
+      list      = prm.get("list");
+      if (!prm.get("octagon").empty())
+        octagon = core::get_double_list(prm, "octagon", 3);
+      octagon_servo           = prm.get_bool("octagon servo");
+      servo_pressure          = prm.get_double("servo pressure");
+      servo_max_velocity      = prm.get_double("servo max velocity");
+      servo_proportional_gain = prm.get_double("servo proportional gain");
+      servo_integral_gain     = prm.get_double("servo integral gain");
+      const bool any_servo =
+        octagon_servo || list.find("servo") != std::string::npos;
+      if (any_servo && !(servo_pressure > 0))
+        core::throw_invalid_parameter("dem/walls/servo pressure",
+                                      prm.get("servo pressure"),
+                                      "servo walls need a target pressure > 0 "
+                                      "Pa");
+      if (any_servo && !(servo_max_velocity > 0))
+        core::throw_invalid_parameter("dem/walls/servo max velocity",
+                                      prm.get("servo max velocity"),
+                                      "servo walls need a speed limit > 0 m/s");
+      prm.leave_subsection();
+    }
+
+
+    namespace
+    {
+      Wall
+      make_plane(const std::string  &name,
+                 const Point<3>     &point,
+                 const Tensor<1, 3> &normal)
+      {
+        Wall w;
+        w.name   = name;
+        w.point  = point;
+        w.normal = normal / normal.norm();
+        return w;
+      }
+
+      void
+      make_servo(Wall &w, const WallParameters &p, const double area)
+      {
+        w.motion            = Wall::Motion::servo;
+        w.target_pressure   = p.servo_pressure;
+        w.max_velocity      = p.servo_max_velocity;
+        w.proportional_gain = p.servo_proportional_gain;
+        w.integral_gain     = p.servo_integral_gain;
+        w.area              = area;
+      }
+    } // namespace
+
+
+    std::vector<Wall>
+    create_walls(const WallParameters &p, const BoundingBox<3> &domain)
+    {
+      std::vector<Wall> walls;
+      const auto [lo, hi] = domain.get_boundary_points();
+      const Tensor<1, 3> extent = hi - lo;
+
+      // Box faces.
+      const std::vector<std::string> face_names = {"x-", "x+", "y-",
+                                                   "y+", "z-", "z+"};
+      std::vector<std::string> faces;
+      {
+        std::string spec = p.box_faces;
+        std::replace(spec.begin(), spec.end(), ',', ' ');
+        std::istringstream in(spec);
+        std::string        f;
+        while (in >> f)
+          {
+            if (f == "all")
+              faces.insert(faces.end(), face_names.begin(), face_names.end());
+            else if (std::find(face_names.begin(), face_names.end(), f) ==
+                     face_names.end())
+              core::throw_invalid_parameter("dem/walls/box", p.box_faces,
+                                            "a comma-separated subset of x-, "
+                                            "x+, y-, y+, z-, z+, or 'all'");
+            else
+              faces.push_back(f);
+          }
+      }
+      for (const auto &f : faces)
+        {
+          const unsigned int d    = (f[0] - 'x');
+          const bool         plus = (f[1] == '+');
+          Tensor<1, 3>       n;
+          n[d] = plus ? -1 : 1;
+          Wall wall = make_plane("wall_" + std::string(1, f[0]) +
+                                   (plus ? "max" : "min"),
+                                 plus ? hi : lo,
+                                 n);
+          wall.area = extent[(d + 1) % 3] * extent[(d + 2) % 3];
+          walls.push_back(wall);
+        }
+
+      // Octagon of pistons.
+      if (!p.octagon.empty())
+        {
+          const double R = p.octagon[2];
+          if (!(R > 0))
+            core::throw_invalid_parameter("dem/walls/octagon",
+                                          std::to_string(R),
+                                          "the inradius must be > 0");
+          // Side of a regular octagon of inradius R: 2 R tan(pi/8).
+          const double side = 2 * R * std::tan(M_PI / 8);
+          for (unsigned int k = 0; k < 8; ++k)
+            {
+              const double angle = k * M_PI / 4;
+              Tensor<1, 3> outward;
+              outward[0] = std::cos(angle);
+              outward[1] = std::sin(angle);
+              Point<3> point(p.octagon[0], p.octagon[1], 0.5 * (lo[2] + hi[2]));
+              point += R * outward;
+              Wall w = make_plane("piston_" + std::to_string(k), point, -outward);
+              w.area = side * extent[2];
+              if (p.octagon_servo)
+                make_servo(w, p, side * extent[2]);
+              walls.push_back(w);
+            }
+        }
+
+      // Free list.
+      std::istringstream list(p.list);
+      std::string        item;
+      unsigned int       count = 0;
+      while (std::getline(list, item, ';'))
+        {
+          std::istringstream in(item);
+          std::string        shape;
+          if (!(in >> shape))
+            continue;
+          const auto bad = [&](const std::string &why) {
+            core::throw_invalid_parameter("dem/walls/list", item, why);
+          };
+          double v[7];
+          for (unsigned int i = 0; i < (shape == "cylinder" ? 7u : 6u); ++i)
+            if (!(in >> v[i]))
+              bad("expected 'plane px py pz nx ny nz MOTION' or 'cylinder px "
+                  "py pz ax ay az radius'");
+          const Point<3>     point(v[0], v[1], v[2]);
+          const Tensor<1, 3> dir({v[3], v[4], v[5]});
+          if (!(dir.norm() > 0))
+            bad("the normal or axis must be nonzero");
+          const std::string name = "wall_" + std::to_string(count++);
+          if (shape == "cylinder")
+            {
+              Wall w   = make_plane(name, point, dir);
+              w.shape  = Wall::Shape::cylinder;
+              w.radius = v[6];
+              if (!(w.radius > 0))
+                bad("the cylinder radius must be > 0");
+              walls.push_back(w);
+              continue;
+            }
+          if (shape != "plane")
+            bad("walls are 'plane' or 'cylinder'");
+          Wall w = make_plane(name, point, dir);
+          {
+            // Loaded area: the box's cross-section normal to the wall.
+            unsigned int axis = 0;
+            for (unsigned int d = 1; d < 3; ++d)
+              if (std::abs(w.normal[d]) > std::abs(w.normal[axis]))
+                axis = d;
+            w.area = extent[(axis + 1) % 3] * extent[(axis + 2) % 3];
+          }
+          std::string motion;
+          in >> motion;
+          if (motion == "fixed" || motion.empty())
+            ;
+          else if (motion == "velocity")
+            {
+              w.motion = Wall::Motion::velocity;
+              for (unsigned int d = 0; d < 3; ++d)
+                if (!(in >> w.velocity[d]))
+                  bad("'velocity' needs three components vx vy vz");
+            }
+          else if (motion == "servo")
+            make_servo(w, p, w.area);
+          else
+            bad("the motion is 'fixed', 'velocity vx vy vz' or 'servo'");
+          walls.push_back(w);
+        }
+      return walls;
+    }
+  } // namespace dem
+} // namespace softsand

@@ -1,0 +1,67 @@
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/particles/data_out.h>
+
+#include <softsand/dem/granular_dynamics.h>
+#include <softsand/io/grain_output.h>
+
+#include <cstdio>
+#include <fstream>
+
+namespace softsand
+{
+  namespace io
+  {
+    GrainOutput::GrainOutput(const std::string &directory,
+                             const std::string &base_name)
+      : directory(directory)
+      , base_name(base_name)
+    {}
+
+
+    void
+    GrainOutput::write(const Particles::ParticleHandler<3> &particles,
+                       const double                         time,
+                       const MPI_Comm                       comm)
+    {
+      using DCI = DataComponentInterpretation::DataComponentInterpretation;
+      std::vector<std::string> names(dem::property::n_properties);
+      std::vector<DCI> kinds(dem::property::n_properties,
+                             DataComponentInterpretation::component_is_scalar);
+      names[dem::property::radius]   = "radius";
+      names[dem::property::density]  = "density";
+      names[dem::property::contacts] = "contacts";
+      const std::pair<unsigned int, const char *> vectors[] = {
+        {dem::property::velocity, "velocity"},
+        {dem::property::angular_velocity, "angular_velocity"},
+        {dem::property::force, "force"},
+        {dem::property::torque, "torque"},
+        {dem::property::fluid_force, "fluid_force"},
+        {dem::property::fluid_torque, "fluid_torque"}};
+      for (const auto &[first, name] : vectors)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            names[first + d] = name;
+            kinds[first + d] =
+              DataComponentInterpretation::component_is_part_of_vector;
+          }
+
+      Particles::DataOut<3> data_out;
+      data_out.build_patches(particles, names, kinds);
+      DataOutBase::VtkFlags flags;
+      flags.time = time;
+      data_out.set_flags(flags);
+      const std::string pvtu = data_out.write_vtu_with_pvtu_record(
+        directory + "/", base_name, counter++, comm, 5, 0);
+      records.emplace_back(time, pvtu);
+      if (Utilities::MPI::this_mpi_process(comm) == 0)
+        {
+          const std::string pvd = directory + "/" + base_name + ".pvd";
+          {
+            std::ofstream out(pvd + ".tmp");
+            DataOutBase::write_pvd_record(out, records);
+          }
+          std::rename((pvd + ".tmp").c_str(), pvd.c_str());
+        }
+    }
+  } // namespace io
+} // namespace softsand
