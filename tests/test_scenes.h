@@ -6,6 +6,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <softsand/core/parameters.h>
+#include <softsand/core/granular_simulator.h>
 #include <softsand/core/simulator.h>
 
 #include <deal.II/base/logstream.h>
@@ -42,6 +43,22 @@ run_scene(const std::string &prm_text, const MPI_Comm comm = MPI_COMM_WORLD)
   core::Parameters<dim> parameters;
   parameters.parse_parameters(prm);
   core::Simulator<dim> simulator(parameters, comm);
+  simulator.run();
+  return simulator.results();
+}
+
+/// Run a granular (DEM-only) scene given as .prm text; its final results.
+inline std::map<std::string, double>
+run_granular_scene(const std::string &prm_text,
+                   const MPI_Comm     comm = MPI_COMM_WORLD)
+{
+  using namespace softsand;
+  dealii::ParameterHandler prm;
+  core::Parameters<3>::declare_parameters(prm);
+  prm.parse_input_from_string(prm_text);
+  core::Parameters<3> parameters;
+  parameters.parse_parameters(prm);
+  core::GranularSimulator simulator(parameters, comm);
   simulator.run();
   return simulator.results();
 }

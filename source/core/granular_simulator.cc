@@ -129,12 +129,19 @@ namespace softsand
           output->write(dem->particles(), dem->time(), mpi_communicator);
       };
 
+      if (!dp.save_initial_pack.empty() &&
+          Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        io::write_grain_file<3>(p.output.directory + "/" +
+                                  dp.save_initial_pack,
+                                grains);
       record();
       write_grains();
+      Timer loop_clock;
       const double end_time = p.simulation_control.end_time;
       const unsigned long max_steps =
         static_cast<unsigned long>(std::ceil(end_time / dem->time_step() - 1e-9));
       unsigned int settled_rows = 0;
+      double       max_servo_error = 0; // over the settled rows
       bool         settled      = false;
       double       next_report  = 10;
       while (dem->step_number() < max_steps)
@@ -144,14 +151,26 @@ namespace softsand
           if (n % dp.statistics_interval == 0 || n == max_steps)
             {
               record();
+              // Settled: little motion and every servo wall at its target.
+              double servo_error = 0;
+              for (const auto &wall : dem->get_walls())
+                if (wall.motion == dem::Wall::Motion::servo)
+                  servo_error = std::max(
+                    servo_error,
+                    std::abs(wall.pressure() / wall.target_pressure - 1));
               if (dp.settled_kinetic_energy > 0 && s.n_grains > 0 &&
-                  s.kinetic_energy / s.n_grains < dp.settled_kinetic_energy)
+                  s.kinetic_energy / s.n_grains < dp.settled_kinetic_energy &&
+                  servo_error < dp.walls.servo_tolerance)
                 {
+                  max_servo_error = std::max(max_servo_error, servo_error);
                   if (++settled_rows >= dp.settled_checks)
                     settled = true;
                 }
               else
-                settled_rows = 0;
+                {
+                  settled_rows    = 0;
+                  max_servo_error = 0;
+                }
             }
           if (dp.output_interval > 0 && n % dp.output_interval == 0)
             write_grains();
@@ -182,7 +201,8 @@ namespace softsand
                                     final_grains);
         }
 
-      const double elapsed = wall_clock.wall_time();
+      const double elapsed   = wall_clock.wall_time();
+      const double loop_time = loop_clock.wall_time();
       last_results = {{"time", dem->time()},
                       {"steps", double(dem->step_number())},
                       {"grains", double(s.n_grains)},
@@ -193,22 +213,27 @@ namespace softsand
                       {"coordination", s.coordination},
                       {"packing_fraction", s.packing_fraction},
                       {"settled", settled ? 1. : 0.},
+                      {"settled_servo_max_error", max_servo_error},
                       {"lost_grains", double(Utilities::MPI::sum(
                                         dem->n_lost_grains(), mpi_communicator))},
-                      {"wall_time", elapsed}};
+                      {"wall_time", elapsed},
+                      {"loop_time", loop_time},
+                      {"grain_steps_per_second",
+                       dem->step_number() * double(s.n_grains) / loop_time}};
       for (const auto &wall : dem->get_walls())
         if (wall.shape == dem::Wall::Shape::plane)
           last_results[wall.name + "_pressure"] = wall.pressure();
 
       progress << "softsand granular: " << dem->step_number() << " steps in "
                << elapsed << " s: "
-               << dem->step_number() * double(s.n_grains) / elapsed
-               << " grain-steps/s, " << dem->n_neighbor_list_builds()
+               << dem->step_number() * double(s.n_grains) / loop_time
+               << " grain-steps/s in the time loop, " << dem->n_neighbor_list_builds()
                << " neighbour-list builds"
                << (settled ? ", settled" : "") << std::endl;
       pcout << "Results (granular):" << std::endl;
       for (const auto &[name, value] : last_results)
-        if (name != "wall_time")
+        if (name != "wall_time" && name != "loop_time" &&
+            name != "grain_steps_per_second")
           pcout << "  " << std::left << std::setw(24) << name << " "
                 << std::scientific << std::setprecision(5) << value
                 << std::defaultfloat << std::endl;

@@ -50,6 +50,10 @@ namespace softsand
                         "Write the final grains to this file (x y z radius "
                         "vx vy vz wx wy wz), relative to the output "
                         "directory; empty: do not.");
+      prm.declare_entry("save initial pack", "", Patterns::Anything(),
+                        "Write the inserted grains before the first step, "
+                        "same format (e.g. to start another code from the "
+                        "same pack); empty: do not.");
       prm.leave_subsection();
     }
 
@@ -85,7 +89,8 @@ namespace softsand
       output_interval        = prm.get_integer("output interval");
       if (!prm.get("probe box").empty())
         probe_box = core::get_double_list(prm, "probe box", 6);
-      save_pack = prm.get("save pack");
+      save_pack         = prm.get("save pack");
+      save_initial_pack = prm.get("save initial pack");
       prm.leave_subsection();
     }
   } // namespace dem

@@ -297,15 +297,13 @@ namespace softsand
             pair_history[k].rolling_torque.norm_square() > 0)
           old_pairs.emplace(pair_key(id[pairs[k].first], id[pairs[k].second]),
                             pair_history[k]);
-      const unsigned int n_walls = walls.size();
-      std::unordered_map<types::particle_index, unsigned int> old_local;
-      std::vector<ContactHistory> old_wall_history;
-      if (n_walls > 0)
-        {
-          for (unsigned int i = 0; i < n_local; ++i)
-            old_local.emplace(id[i], i);
-          old_wall_history.swap(wall_history);
-        }
+      std::unordered_map<std::uint64_t, ContactHistory> old_wall_contacts;
+      for (unsigned int k = 0; k < wall_pairs.size(); ++k)
+        if (wall_history[k].shear.norm_square() > 0 ||
+            wall_history[k].rolling_torque.norm_square() > 0)
+          old_wall_contacts.emplace(pair_key(id[wall_pairs[k].first],
+                                             wall_pairs[k].second),
+                                    wall_history[k]);
 
       if (!x.empty())
         copy_to_particles();
@@ -410,15 +408,26 @@ namespace softsand
             if (it != old_pairs.end())
               pair_history[k] = it->second;
           }
-      wall_history.assign(n_local * n_walls, ContactHistory());
-      if (n_walls > 0 && !old_wall_history.empty())
-        for (unsigned int i = 0; i < n_local; ++i)
+      // Grain-wall candidates: local grains within reach of each wall.
+      wall_pairs.clear();
+      for (unsigned int k = 0; k < walls.size(); ++k)
+        {
+          walls[k].point_at_build = walls[k].point;
+          for (unsigned int i = 0; i < n_local; ++i)
+            {
+              Tensor<1, 3> n;
+              if (walls[k].overlap(x[i], radius[i] + skin, n) > 0)
+                wall_pairs.emplace_back(i, k);
+            }
+        }
+      wall_history.assign(wall_pairs.size(), ContactHistory());
+      if (!old_wall_contacts.empty())
+        for (unsigned int k = 0; k < wall_pairs.size(); ++k)
           {
-            const auto it = old_local.find(id[i]);
-            if (it != old_local.end())
-              for (unsigned int k = 0; k < n_walls; ++k)
-                wall_history[i * n_walls + k] =
-                  old_wall_history[it->second * n_walls + k];
+            const auto it = old_wall_contacts.find(
+              pair_key(id[wall_pairs[k].first], wall_pairs[k].second));
+            if (it != old_wall_contacts.end())
+              wall_history[k] = it->second;
           }
     }
 
@@ -481,33 +490,30 @@ namespace softsand
             }
         }
 
-      const unsigned int n_walls = walls.size();
       for (auto &wall : walls)
         wall.force = 0;
-      for (unsigned int k = 0; k < n_walls; ++k)
+      for (unsigned int k = 0; k < wall_pairs.size(); ++k)
         {
-          Wall &wall = walls[k];
-          for (unsigned int i = 0; i < n_local; ++i)
+          const unsigned int i    = wall_pairs[k].first;
+          Wall              &wall = walls[wall_pairs[k].second];
+          Tensor<1, 3>       n;
+          const double       delta = wall.overlap(x[i], radius[i], n);
+          ContactHistory    &h     = wall_history[k];
+          if (delta <= 0)
             {
-              Tensor<1, 3>   n;
-              const double   delta = wall.overlap(x[i], radius[i], n);
-              ContactHistory &h    = wall_history[i * n_walls + k];
-              if (delta <= 0)
-                {
-                  h = ContactHistory();
-                  continue;
-                }
-              const double       li    = radius[i] - 0.5 * delta;
-              const Tensor<1, 3> v_rel =
-                v[i] - wall.velocity - cross_product_3d(li * w[i], n);
-              const double area =
-                cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
-              law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, w[i],
-                           area, dt, h, force, torque_i, torque_j);
-              f[i] += force;
-              t[i] += torque_i;
-              wall.force -= force;
+              h = ContactHistory();
+              continue;
             }
+          const double       li    = radius[i] - 0.5 * delta;
+          const Tensor<1, 3> v_rel =
+            v[i] - wall.velocity - cross_product_3d(li * w[i], n);
+          const double area =
+            cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
+          law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, w[i],
+                       area, dt, h, force, torque_i, torque_j);
+          f[i] += force;
+          t[i] += torque_i;
+          wall.force -= force;
         }
     }
 
@@ -532,6 +538,10 @@ namespace softsand
       current_time += dt;
       ++n_steps;
 
+      // Moving walls count like grains: their candidate lists must stay
+      // valid too (every rank moves the walls identically).
+      for (const auto &wall : walls)
+        max_move2 = std::max(max_move2, wall.point.distance_square(wall.point_at_build));
       const bool rebuild =
         (parallel ? Utilities::MPI::max(max_move2, comm) : max_move2) >
         0.25 * skin * skin;

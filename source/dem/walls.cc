@@ -62,6 +62,9 @@ namespace softsand
                         "Wall speed / max speed per relative pressure error.");
       prm.declare_entry("servo integral gain", "0", Patterns::Double(0),
                         "Integral gain of the servo (1/s).");
+      prm.declare_entry("servo tolerance", "0.02", Patterns::Double(0),
+                        "A pack counts as settled only with every servo wall "
+                        "within this relative error of its target pressure.");
       prm.leave_subsection();
     }
 
@@ -79,6 +82,7 @@ namespace softsand
       servo_max_velocity      = prm.get_double("servo max velocity");
       servo_proportional_gain = prm.get_double("servo proportional gain");
       servo_integral_gain     = prm.get_double("servo integral gain");
+      servo_tolerance         = prm.get_double("servo tolerance");
       const bool any_servo =
         octagon_servo || list.find("servo") != std::string::npos;
       if (any_servo && !(servo_pressure > 0))

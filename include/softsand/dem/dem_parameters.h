@@ -45,6 +45,8 @@ namespace softsand
       std::vector<double> probe_box;
       /// Write the final pack to this file (grain-file format; empty: no).
       std::string  save_pack;
+      /// Write the inserted grains before the first step (empty: no).
+      std::string  save_initial_pack;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -175,6 +175,8 @@ namespace softsand
       /// of each; histories of the grain-wall contacts per local grain.
       std::vector<std::pair<unsigned int, unsigned int>> pairs;
       std::vector<ContactHistory>                        pair_history;
+      /// Grain-wall candidates (local grain, wall) and their histories.
+      std::vector<std::pair<unsigned int, unsigned int>> wall_pairs;
       std::vector<ContactHistory>                        wall_history;
     };
   } // namespace dem

@@ -53,6 +53,9 @@ namespace softsand
       double target_pressure = 0, area = 1, max_velocity = 0;
       double proportional_gain = 1, integral_gain = 0, error_integral = 0;
 
+      /// Where the wall was when the grain-wall candidates were listed.
+      Point<3>     point_at_build;
+
       /// Force that the grains exert on the wall in the last step (N).
       Tensor<1, 3> force;
 
@@ -96,6 +99,8 @@ namespace softsand
       bool        octagon_servo = false;
       double      servo_pressure = 0, servo_max_velocity = 0.01;
       double      servo_proportional_gain = 1, servo_integral_gain = 0;
+      /// A settled pack has every servo wall within this relative error.
+      double      servo_tolerance = 0.02;
 
       static void
       declare_parameters(ParameterHandler &prm);
