@@ -1,10 +1,14 @@
 // Bad input stops with a message that names the entry, the value and what
 // is allowed: unknown entries, wrong types, out-of-range values, missing
-// files, overlapping grains, grains outside the domain, radius <= 0.
+// files, overlapping grains, grains outside the domain, radius <= 0; and
+// for granular scenes also a time step above the Rayleigh limit, servo walls
+// without a target and malformed walls or size distributions.
 
 #include <deal.II/base/mpi.h>
 
 #include <softsand/core/parameter_tools.h>
+
+#include <fstream>
 
 #include "test_scenes.h"
 #include "tests.h"
@@ -28,6 +32,29 @@ check(const std::string &what, const std::string &prm_text)
            k      = message.find(source))
         message.replace(k, source.size(), "<tests>");
       deallog << what << ": " << message << std::endl;
+    }
+}
+
+/// The same for a granular (DEM-only) scene in a 1 mm box.
+void
+check_granular(const std::string &what, const std::string &prm_text)
+{
+  const std::string base =
+    "subsection simulation control\n set mode = granular\n"
+    " set end time = 1e-4\nend\n"
+    "subsection mesh\n set lower corner = 0, 0, 0\n"
+    " set upper corner = 1e-3, 1e-3, 1e-3\nend\n";
+  try
+    {
+      run_granular_scene(base + prm_text +
+                         "subsection output\n set directory = results\n"
+                         " set write vtu = false\n set verbosity = quiet\nend\n");
+      deallog << "granular, " << what << ": accepted (wrong)" << std::endl;
+    }
+  catch (const std::exception &e)
+    {
+      deallog << "granular, " << what << ": "
+              << softsand::core::error_message(e) << std::endl;
     }
 }
 
@@ -55,6 +82,37 @@ main(int argc, char **argv)
         "subsection grains\n set source = random\n set size distribution = "
         "uniform\n set min diameter = 2e-4\n set max diameter = 1e-4\nend\n");
   check("bad body force", "subsection fluid\n set body force = 1; x +\nend\n");
+
+  {
+    std::ofstream pack("overlapping_pack.txt");
+    pack << "5e-4 5e-4 5e-4 1e-4\n6.5e-4 5e-4 5e-4 1e-4\n";
+  }
+  check_granular("overlapping grains in a loaded pack",
+                 "subsection grains\n set source = file\n"
+                 " set file = overlapping_pack.txt\nend\n");
+  check_granular("grain outside the domain",
+                 grains + " set list = 5e-4, 5e-4, 2e-3, 1e-4\nend\n");
+  check_granular("time step above the limit",
+                 grains + " set list = 5e-4, 5e-4, 5e-4, 5e-5\nend\n"
+                 "subsection dem\n set time step = 1e-5\nend\n");
+  check_granular("radius <= 0",
+                 grains + " set list = 5e-4, 5e-4, 5e-4, -1e-4\nend\n");
+  check_granular("empty size range",
+                 "subsection grains\n set source = random\n set count = 10\n"
+                 " set size distribution = truncated normal\n"
+                 " set mean diameter = 1e-4\n set diameter standard deviation = 2e-5\n"
+                 " set min diameter = 1.2e-4\n set max diameter = 1.1e-4\nend\n");
+  check_granular("servo wall without a target",
+                 "subsection dem\n subsection walls\n"
+                 "  set list = plane 0 1e-3 0 0 -1 0 servo\n end\nend\n");
+  check_granular("unknown wall motion",
+                 "subsection dem\n subsection walls\n"
+                 "  set list = plane 0 0 0 0 0 1 wobble\n end\nend\n");
+  check_granular("discrete sizes without fractions",
+                 "subsection grains\n set source = random\n set count = 10\n"
+                 " set size distribution = discrete\n"
+                 " set discrete diameters = 1e-4, 2e-4\n"
+                 " set discrete fractions = 1\nend\n");
   try
     {
       softsand::core::run_parameter_file("no_such_file.prm", MPI_COMM_WORLD);

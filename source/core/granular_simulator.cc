@@ -102,7 +102,11 @@ namespace softsand
         statistics.add_value("max_speed", s.max_speed);
         statistics.add_value("max_overlap_ratio", s.max_overlap);
         statistics.add_value("mean_overlap_ratio", s.mean_overlap);
+        statistics.add_value("max_wall_overlap_ratio", s.max_wall_overlap);
         statistics.add_value("coordination", s.coordination);
+        const auto [omega_dt, damping_dt] = dem->stability_rates();
+        statistics.add_value("omega_dt", omega_dt);
+        statistics.add_value("damping_dt", damping_dt);
         statistics.add_value("packing_fraction", s.packing_fraction);
         statistics.add_value("grains", s.n_grains);
         statistics.add_value("lost_grains",
@@ -138,17 +142,23 @@ namespace softsand
       write_grains();
       Timer loop_clock;
       const double end_time = p.simulation_control.end_time;
-      const unsigned long max_steps =
-        static_cast<unsigned long>(std::ceil(end_time / dem->time_step() - 1e-9));
+      const unsigned long max_steps = p.simulation_control.max_time_steps;
+      // The step may adapt: run until the time nearest to the end time.
+      const auto finished = [&]() {
+        return dem->time() + 0.5 * dem->time_step() >= end_time ||
+               dem->step_number() >= max_steps;
+      };
       unsigned int settled_rows = 0;
       double       max_servo_error = 0; // over the settled rows
       bool         settled      = false;
       double       next_report  = 10;
-      while (dem->step_number() < max_steps)
+      bool last_recorded = true;
+      while (!finished())
         {
           dem->step();
           const unsigned long n = dem->step_number();
-          if (n % dp.statistics_interval == 0 || n == max_steps)
+          last_recorded = (n % dp.statistics_interval == 0) || finished();
+          if (last_recorded)
             {
               record();
               // Settled: little motion and every servo wall at its target.
@@ -176,8 +186,9 @@ namespace softsand
             write_grains();
           if (wall_clock.wall_time() > next_report)
             {
-              progress << "  t = " << dem->time() << " s, step " << n << " of "
-                       << max_steps << ", kinetic energy "
+              progress << "  t = " << dem->time() << " s of " << end_time
+                       << ", step " << n << ", dt " << dem->time_step()
+                       << " s, kinetic energy "
                        << s.kinetic_energy << " J, "
                        << std::setprecision(3)
                        << n * s.n_grains / wall_clock.wall_time()
@@ -188,8 +199,7 @@ namespace softsand
           if (settled)
             break;
         }
-      if (dem->step_number() % dp.statistics_interval != 0 &&
-          dem->step_number() != max_steps)
+      if (!last_recorded)
         record();
       write_grains();
 

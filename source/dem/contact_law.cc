@@ -61,6 +61,10 @@ namespace softsand
       , mu_rolling(material.rolling_friction)
       , cohesion(material.cohesion_energy_density)
       , rolling_model(rolling)
-    {}
+    {
+      const double c = -2. * std::sqrt(5. / 6.) * damping_beta;
+      damping_n      = c * std::sqrt(2. * y_eff);
+      damping_t      = c * std::sqrt(8. * g_eff);
+    }
   } // namespace dem
 } // namespace softsand

@@ -25,9 +25,18 @@ namespace softsand
       prm.declare_entry("max rayleigh fraction", "0.35", Patterns::Double(0),
                         "A time step above this fraction of the Rayleigh time "
                         "stops the run: contacts would be unstable.");
+      prm.declare_entry("contact stability number", "0.8",
+                        Patterns::Double(0, 2),
+                        "With time step = 0 the step also follows the "
+                        "contacts: omega dt and c dt of the stiffest grain "
+                        "(sum of its contact stiffnesses and dampings, "
+                        "tangential ones on 2/7 of the mass) stay at most "
+                        "this. Hertz contacts stiffen with the overlap, so "
+                        "cohesive or compressed packs need smaller steps "
+                        "than the Rayleigh time suggests.");
       prm.declare_entry("gravity", "0, 0, 0", Patterns::Anything(),
                         "Gravity vector (m/s^2).");
-      prm.declare_entry("skin", "0.4", Patterns::Double(0),
+      prm.declare_entry("skin", "0.25", Patterns::Double(0),
                         "Verlet skin as a fraction of the largest radius; "
                         "neighbour lists are rebuilt when a grain moved half "
                         "of it.");
@@ -78,6 +87,11 @@ namespace softsand
           prm.get("automatic rayleigh fraction"),
           "it must lie in (0, max rayleigh fraction = " +
             prm.get("max rayleigh fraction") + "]");
+      stability_number = prm.get_double("contact stability number");
+      if (!(stability_number > 0))
+        core::throw_invalid_parameter("dem/contact stability number",
+                                      prm.get("contact stability number"),
+                                      "it must lie in (0, 2]");
       gravity       = core::get_tensor<3>(prm, "gravity");
       skin_fraction = prm.get_double("skin");
       if (!(skin_fraction > 0))

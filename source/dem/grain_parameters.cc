@@ -60,6 +60,13 @@ namespace softsand
                         Patterns::Integer(0),
                         "source = random: number of grains to insert (0: "
                         "fill to the solid fraction).");
+      prm.declare_entry("max overlap ratio",
+                        "0.3",
+                        Patterns::Double(0),
+                        "Largest overlap delta / R* accepted between two "
+                        "grains of a file or list: settled DEM packs touch "
+                        "with overlaps of a few % of R* (soft grains under "
+                        "load up to about 25%).");
       prm.declare_entry("seed",
                         "1",
                         Patterns::Integer(0),
@@ -126,6 +133,7 @@ namespace softsand
         }
       solid_fraction    = prm.get_double("solid fraction");
       count             = prm.get_integer("count");
+      max_overlap_ratio = prm.get_double("max overlap ratio");
       {
         const auto list = [&](const std::string &entry) {
           std::vector<double> values;
@@ -263,9 +271,10 @@ namespace softsand
       // Loaded or listed packs come from users: refuse overlaps and grains
       // outside the domain before anything is built on them.
       if (p.source == S::file)
-        check_grains(grains, domain, "grains/file = " + p.file);
+        check_grains(grains, domain, "grains/file = " + p.file,
+                     p.max_overlap_ratio);
       else if (p.source == S::list)
-        check_grains(grains, domain, "grains/list");
+        check_grains(grains, domain, "grains/list", p.max_overlap_ratio);
       if (!velocities_from_file)
         for (auto &g : grains)
           {

@@ -57,7 +57,7 @@ namespace softsand
 
 
     GranularDynamics::GranularDynamics(
-      const parallel::distributed::Triangulation<3> &tria,
+      parallel::distributed::Triangulation<3> &tria,
       const DEMParameters                         &parameters,
       const BoundingBox<3>                        &domain)
       : parameters(parameters)
@@ -118,8 +118,19 @@ namespace softsand
       GridTools::Cache<3> cache(triangulation, mapping());
       typename Triangulation<3>::active_cell_iterator hint;
       std::vector<double> p(property::n_properties, 0.);
+      // Points outside this rank's cells would send the cell search over
+      // the whole mesh: skip them by the bounding boxes of the own cells.
+      auto local_boxes = GridTools::compute_mesh_predicate_bounding_box(
+        triangulation, IteratorFilters::LocallyOwnedCell(), 1, false, 4);
+      for (auto &box : local_boxes)
+        box.extend(1e-10 * std::max(1e-300, box.side_length(0)));
       for (unsigned int g = 0; g < all.size(); ++g)
         {
+          bool near = false;
+          for (const auto &box : local_boxes)
+            near = near || box.point_inside(all[g].center);
+          if (!near)
+            continue;
           const auto found = GridTools::find_active_cell_around_point(
             cache, all[g].center, hint);
           if (found.first.state() != IteratorState::valid ||
@@ -198,8 +209,12 @@ namespace softsand
             str(parameters.max_rayleigh_fraction * t_rayleigh) +
             " s or 0 for the automatic step");
 
+      adaptive = (parameters.time_step == 0);
+      dt_max   = dt;
       rebuild_neighbor_lists();
       compute_forces();
+      if (adaptive)
+        adapt_time_step();
     }
 
 
@@ -309,6 +324,8 @@ namespace softsand
         copy_to_particles();
       particle_handler.sort_particles_into_subdomains_and_cells();
       if (parallel)
+        balance_load();
+      if (parallel)
         particle_handler.exchange_ghost_particles(true);
       copy_from_particles();
       x_at_build = x;
@@ -400,6 +417,14 @@ namespace softsand
           });
         }
       pair_history.assign(pairs.size(), ContactHistory());
+      pair_r_eff.resize(pairs.size());
+      pair_m_eff.resize(pairs.size());
+      for (unsigned int k = 0; k < pairs.size(); ++k)
+        {
+          const unsigned int i = pairs[k].first, j = pairs[k].second;
+          pair_r_eff[k] = radius[i] * radius[j] / (radius[i] + radius[j]);
+          pair_m_eff[k] = mass[i] * mass[j] / (mass[i] + mass[j]);
+        }
       if (!old_pairs.empty())
         for (unsigned int k = 0; k < pairs.size(); ++k)
           {
@@ -433,6 +458,63 @@ namespace softsand
 
 
     void
+    GranularDynamics::adapt_time_step()
+    {
+      double rates[2] = {stiffness_rate, damping_rate};
+      if (parallel)
+        Utilities::MPI::max(ArrayView<const double>(rates, 2),
+                            comm,
+                            ArrayView<double>(rates, 2));
+      const double number = std::max(rates[0], rates[1]);
+      if (adaptive)
+        {
+          const double limit = parameters.stability_number;
+          dt = (number > 0) ? std::min(dt_max, dt * limit / number) : dt_max;
+        }
+      else if (number > 2)
+        AssertThrow(false,
+                    ExcMessage(
+                      "At t = " + str(current_time) +
+                      " s the contacts have stiffened beyond what dem/time "
+                      "step = " + str(dt) +
+                      " s can integrate: omega dt = " + str(rates[0]) +
+                      ", c dt = " + str(rates[1]) +
+                      " for the stiffest grain (explicit steps are unstable "
+                      "above 2). Hertz contacts stiffen with the overlap, "
+                      "which cohesion or high pressure make large. Take dt "
+                      "<= " + str(dt * parameters.stability_number / number) +
+                      " s, or time step = 0 to adapt it."));
+    }
+
+
+    void
+    GranularDynamics::balance_load()
+    {
+      const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
+      const double       mine    = particle_handler.n_locally_owned_particles();
+      const double       most    = Utilities::MPI::max(mine, comm);
+      const double       mean    = Utilities::MPI::sum(mine, comm) / n_ranks;
+      if (most <= 1.1 * mean + 16)
+        return;
+      // A grain costs far more per step than an empty cell.
+      auto connection = triangulation.signals.weight.connect(
+        [this](const typename Triangulation<3>::cell_iterator &cell,
+               const typename Triangulation<3>::CellStatus     status)
+          -> unsigned int {
+          if (status == Triangulation<3>::CELL_PERSIST ||
+              status == Triangulation<3>::CELL_REFINE)
+            return 1 + 20 * particle_handler.n_particles_in_cell(cell);
+          return 1;
+        });
+      particle_handler.prepare_for_coarsening_and_refinement();
+      triangulation.repartition();
+      particle_handler.unpack_after_coarsening_and_refinement();
+      connection.disconnect();
+      ++n_balances;
+    }
+
+
+    void
     GranularDynamics::compute_forces()
     {
       const Tensor<1, 3> &g = parameters.gravity;
@@ -443,6 +525,8 @@ namespace softsand
           n_contacts[i] = 0;
         }
       const bool cohesive = parameters.material.cohesion_energy_density > 0;
+      grain_stiffness.assign(x.size(), 0.);
+      grain_damping.assign(x.size(), 0.);
 
       Tensor<1, 3> force, torque_i, torque_j;
       for (unsigned int k = 0; k < pairs.size(); ++k)
@@ -459,12 +543,12 @@ namespace softsand
               continue;
             }
           const double       dist  = std::sqrt(d2);
-          const Tensor<1, 3> n     = d / dist;
+          const Tensor<1, 3> n     = (1. / dist) * d;
           const double       delta = rs - dist;
           const double       li    = radius[i] - 0.5 * delta;
           const double       lj    = radius[j] - 0.5 * delta;
-          const double       r_eff = radius[i] * radius[j] / rs;
-          const double       m_eff = mass[i] * mass[j] / (mass[i] + mass[j]);
+          const double       r_eff = pair_r_eff[k];
+          const double       m_eff = pair_m_eff[k];
           const Tensor<1, 3> v_rel =
             v[i] - v[j] - cross_product_3d(li * w[i] + lj * w[j], n);
           double area = 0;
@@ -474,8 +558,14 @@ namespace softsand
               const double s   = d2 - rj2 + ri2;
               area = M_PI * std::max(0., (4 * d2 * ri2 - s * s) / (4 * d2));
             }
+          double stiffness, damping;
           law.evaluate(n, delta, li, lj, r_eff, m_eff, v_rel, w[i] - w[j],
-                       area, dt, h, force, torque_i, torque_j);
+                       area, dt, h, force, torque_i, torque_j, stiffness,
+                       damping);
+          grain_stiffness[i] += stiffness;
+          grain_stiffness[j] += stiffness;
+          grain_damping[i] += damping;
+          grain_damping[j] += damping;
           if (i < n_local)
             {
               f[i] += force;
@@ -509,18 +599,36 @@ namespace softsand
             v[i] - wall.velocity - cross_product_3d(li * w[i], n);
           const double area =
             cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
+          double stiffness, damping;
           law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, w[i],
-                       area, dt, h, force, torque_i, torque_j);
+                       area, dt, h, force, torque_i, torque_j, stiffness,
+                       damping);
+          grain_stiffness[i] += stiffness;
+          grain_damping[i] += damping;
           f[i] += force;
           t[i] += torque_i;
           wall.force -= force;
         }
+
+      // Explicit stability: omega dt and c dt of the stiffest grain. Hertz
+      // contacts stiffen with the overlap (as sqrt(delta)), so cohesion or
+      // high pressure can make them much stiffer than the Rayleigh time
+      // assumes.
+      double omega2 = 0, rate = 0;
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          omega2 = std::max(omega2, grain_stiffness[i] * inv_mass[i]);
+          rate   = std::max(rate, grain_damping[i] * inv_mass[i]);
+        }
+      stiffness_rate = std::sqrt(omega2) * dt;
+      damping_rate   = rate * dt;
     }
 
 
     void
     GranularDynamics::step()
     {
+      adapt_time_step();
       const double half = 0.5 * dt;
       double       max_move2 = 0;
       // Kick, drift, then predict the end-of-step velocity with the old
@@ -620,6 +728,15 @@ namespace softsand
           sums[2] += 1;
           max_overlap = std::max(max_overlap, ratio);
         }
+      double max_wall_overlap = 0;
+      for (unsigned int k = 0; k < wall_pairs.size(); ++k)
+        {
+          Tensor<1, 3>       n;
+          const unsigned int i     = wall_pairs[k].first;
+          const double       delta = walls[wall_pairs[k].second].overlap(x[i], radius[i], n);
+          max_wall_overlap = std::max(max_wall_overlap, delta / radius[i]);
+        }
+      s.max_wall_overlap = Utilities::MPI::max(max_wall_overlap, comm);
       Utilities::MPI::sum(ArrayView<const double>(sums, 7),
                           comm,
                           ArrayView<double>(sums, 7));

@@ -671,7 +671,8 @@ namespace softsand
     void
     check_grains(const std::vector<Grain<dim>> &grains,
                  const BoundingBox<dim>        &domain,
-                 const std::string             &where)
+                 const std::string             &where,
+                 const double                   max_overlap_ratio)
     {
       double max_diameter = 0;
       for (unsigned int i = 0; i < grains.size(); ++i)
@@ -701,8 +702,10 @@ namespace softsand
           unsigned int      other = 0;
           const bool        overlap =
             cells.any_near(g.center, [&](const unsigned int j) {
+              const double sum   = g.radius + grains[j].radius;
+              const double r_eff = g.radius * grains[j].radius / sum;
               const double s =
-                (g.radius + grains[j].radius) * (1. - overlap_tolerance);
+                sum - std::max(sum * overlap_tolerance, max_overlap_ratio * r_eff);
               other = j;
               return g.center.distance_square(grains[j].center) < s * s;
             });
@@ -718,8 +721,13 @@ namespace softsand
                             str(g.radius + h.radius - distance) +
                             " m: centres " + str(h.center) + " and " +
                             str(g.center) + ", radii " + str(h.radius) +
-                            " and " + str(g.radius) +
-                            " m. Grains must not overlap."));
+                            " and " + str(g.radius) + " m; that is " +
+                            str((g.radius + h.radius - distance) /
+                                (g.radius * h.radius / (g.radius + h.radius))) +
+                            " R*, more than grains/max overlap ratio = " +
+                            str(max_overlap_ratio) +
+                            " allows (settled DEM packs touch with overlaps "
+                            "of a few % of R*)."));
             }
           cells.insert(i, g.center);
         }
@@ -759,10 +767,12 @@ namespace softsand
     template void
     check_grains(const std::vector<Grain<2>> &,
                  const BoundingBox<2> &,
-                 const std::string &);
+                 const std::string &,
+                 const double);
     template void
     check_grains(const std::vector<Grain<3>> &,
                  const BoundingBox<3> &,
-                 const std::string &);
+                 const std::string &,
+                 const double);
   } // namespace dem
 } // namespace softsand

@@ -69,7 +69,7 @@ namespace softsand
        * @p w_rel angular velocity of i minus that of j, @p area the area of
        * the contact circle (for cohesion).
        */
-      inline void
+      DEAL_II_ALWAYS_INLINE inline void
       evaluate(const Tensor<1, 3> &n,
                const double        delta,
                const double        lever_i,
@@ -83,7 +83,9 @@ namespace softsand
                ContactHistory     &history,
                Tensor<1, 3>       &force_i,
                Tensor<1, 3>       &torque_i,
-               Tensor<1, 3>       &torque_j) const;
+               Tensor<1, 3>       &torque_j,
+               double             &stiffness,
+               double             &damping) const;
 
       /// Elastic normal force 4/3 Y* sqrt(R*) delta^(3/2) (for statistics).
       double
@@ -100,12 +102,14 @@ namespace softsand
 
     private:
       double       y_eff = 0, g_eff = 0, damping_beta = 0;
+      /// -2 sqrt(5/6) beta sqrt(2 Y*) and -2 sqrt(5/6) beta sqrt(8 G*).
+      double       damping_n = 0, damping_t = 0;
       double       mu = 0, mu_rolling = 0, cohesion = 0;
       RollingModel rolling_model = RollingModel::none;
     };
 
 
-    inline void
+    DEAL_II_ALWAYS_INLINE inline void
     ContactLaw::evaluate(const Tensor<1, 3> &n,
                          const double        delta,
                          const double        lever_i,
@@ -119,15 +123,22 @@ namespace softsand
                          ContactHistory     &history,
                          Tensor<1, 3>       &force_i,
                          Tensor<1, 3>       &torque_i,
-                         Tensor<1, 3>       &torque_j) const
+                         Tensor<1, 3>       &torque_j,
+                         double             &stiffness,
+                         double             &damping) const
     {
-      constexpr double sqrt_5_6 = 0.91287092917527690;
-      const double     root     = std::sqrt(r_eff * delta);
-      const double     kn       = 4. / 3. * y_eff * root;
-      const double     sn       = 2. * y_eff * root;
-      const double     kt       = 8. * g_eff * root;
-      const double     gamma_n  = -2. * sqrt_5_6 * damping_beta * std::sqrt(sn * m_eff);
-      const double     gamma_t  = -2. * sqrt_5_6 * damping_beta * std::sqrt(kt * m_eff);
+      // gamma_{n,t} = -2 sqrt(5/6) beta sqrt(S_{n,t} m*) with S_n = 2 Y* root,
+      // S_t = 8 G* root: one square root serves both.
+      const double root    = std::sqrt(r_eff * delta);
+      const double kn      = 4. / 3. * y_eff * root;
+      const double kt      = 8. * g_eff * root;
+      const double sqrt_rm = std::sqrt(root * m_eff);
+      const double gamma_n = damping_n * sqrt_rm;
+      const double gamma_t = damping_t * sqrt_rm;
+      // What this contact adds to a grain's stiffness and damping; the
+      // tangential terms act on 2/7 of the mass (rolling couples rotation).
+      stiffness = kn + 3.5 * kt;
+      damping   = gamma_n + 3.5 * gamma_t;
 
       const double       vn   = v_rel * n;
       const Tensor<1, 3> vt   = v_rel - vn * n;
@@ -136,21 +147,25 @@ namespace softsand
 
       // Tangential spring: rotate into the current tangent plane keeping its
       // length, then stretch by the tangential displacement of this step.
-      Tensor<1, 3> &xi     = history.shear;
-      const double  xi_len = xi.norm();
-      xi -= (xi * n) * n;
-      const double xi_len_new = xi.norm();
-      if (xi_len_new > 0)
-        xi *= xi_len / xi_len_new;
+      Tensor<1, 3> &xi         = history.shear;
+      const double  xi_normal  = xi * n;
+      if (xi_normal != 0)
+        {
+          const double len2 = xi.norm_square();
+          xi -= xi_normal * n;
+          const double len2_new = xi.norm_square();
+          if (len2_new > 0)
+            xi *= std::sqrt(len2 / len2_new);
+        }
       xi += dt * vt;
-      Tensor<1, 3> ft      = -kt * xi - gamma_t * vt;
-      const double ft_len  = ft.norm();
-      const double ft_max  = mu * std::abs(fn);
-      if (ft_len > ft_max)
+      Tensor<1, 3> ft       = -kt * xi - gamma_t * vt;
+      const double ft_len2  = ft.norm_square();
+      const double ft_max   = mu * std::abs(fn);
+      if (ft_len2 > ft_max * ft_max)
         {
           // Gross sliding: cap at the Coulomb limit and set the spring to
           // what that force needs, so that sticking resumes smoothly.
-          ft *= (ft_len > 0 ? ft_max / ft_len : 0.);
+          ft *= ft_max / std::sqrt(ft_len2);
           xi = -(ft + gamma_t * vt) / kt;
         }
 

@@ -31,9 +31,11 @@ namespace softsand
       double automatic_rayleigh_fraction = 0.2;
       /// Largest accepted dt / (Rayleigh time of the smallest grain).
       double max_rayleigh_fraction = 0.35;
+      /// Adaptive step (time step = 0): largest omega dt and c dt of a grain.
+      double stability_number = 0.8;
       Tensor<1, 3> gravity;
       /// Verlet skin as a fraction of the largest grain radius.
-      double skin_fraction = 0.4;
+      double skin_fraction = 0.25;
 
       /// Stop once the kinetic energy per grain (J) stays below this value
       /// for 'settled checks' statistics rows (0: never).

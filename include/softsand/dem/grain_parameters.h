@@ -40,6 +40,8 @@ namespace softsand
       double      solid_fraction = 0.3;
       /// Random pack: number of grains (0: by solid fraction).
       unsigned int count = 0;
+      /// Largest overlap / R* accepted in a file or list.
+      double       max_overlap_ratio = 0.3;
       std::vector<double> discrete_diameters, discrete_fractions;
       unsigned int seed          = 1;
       std::string  size_distribution = "constant";

@@ -36,6 +36,7 @@ namespace softsand
       double       kinetic_energy = 0;     ///< translational + rotational (J)
       double       max_overlap = 0;        ///< max delta / R* over contacts
       double       mean_overlap = 0;       ///< mean delta / R*
+      double       max_wall_overlap = 0;   ///< max delta / R on walls
       double       coordination = 0;       ///< 2 grain-grain contacts / grain
       double       mean_speed = 0;         ///< m/s
       double       max_speed = 0;          ///< m/s
@@ -63,7 +64,7 @@ namespace softsand
     class GranularDynamics
     {
     public:
-      GranularDynamics(const parallel::distributed::Triangulation<3> &tria,
+      GranularDynamics(parallel::distributed::Triangulation<3> &tria,
                        const DEMParameters                        &parameters,
                        const BoundingBox<3>                       &domain);
 
@@ -91,6 +92,7 @@ namespace softsand
       {
         return dt;
       }
+      /// Current step (adaptive steps change it).
       /// Rayleigh time of the smallest grain.
       double
       rayleigh_time() const
@@ -108,6 +110,11 @@ namespace softsand
         return n_builds;
       }
       unsigned int
+      n_load_balances() const
+      {
+        return n_balances;
+      }
+      unsigned int
       n_lost_grains() const
       {
         return lost_grains;
@@ -115,6 +122,15 @@ namespace softsand
 
       GranularStatistics
       statistics(const BoundingBox<3> &probe) const;
+
+      /// omega dt and c dt of the stiffest and most damped grain (all ranks)
+      /// in the last step: an explicit step is stable for omega dt < 2.
+      std::pair<double, double>
+      stability_rates() const
+      {
+        return {Utilities::MPI::max(stiffness_rate, comm),
+                Utilities::MPI::max(damping_rate, comm)};
+      }
 
       const std::vector<Wall> &
       get_walls() const
@@ -143,6 +159,15 @@ namespace softsand
       copy_to_particles();
       void
       rebuild_neighbor_lists();
+      /// Adaptive step: keep max(omega dt, c dt) of the stiffest grain at
+      /// dem/contact stability number (below the Rayleigh-based step);
+      /// fixed step: stop with a message once it would be unstable.
+      void
+      adapt_time_step();
+      /// Repartition the mesh with cells weighted by their grains when the
+      /// grain counts per rank drifted apart (pours pile up at the bottom).
+      void
+      balance_load();
       void
       update_ghosts();
       void
@@ -151,15 +176,19 @@ namespace softsand
       const DEMParameters &parameters;
       MPI_Comm             comm;
       const bool           parallel;
-      const parallel::distributed::Triangulation<3> &triangulation;
+      parallel::distributed::Triangulation<3> &triangulation;
       BoundingBox<3>       domain;
       Particles::ParticleHandler<3> particle_handler;
       ContactLaw           law;
       std::vector<Wall>    walls;
 
       double        dt = 0, t_rayleigh = 0, current_time = 0;
+      /// Adaptive stepping and its ceiling (the Rayleigh-based step).
+      bool          adaptive = false;
+      double        dt_max   = 0;
       unsigned long n_steps = 0, n_builds = 0;
       unsigned int  lost_grains = 0;
+      unsigned int  n_balances  = 0;
       double        skin = 0, r_max = 0;
 
       // Flat state: local grains [0, n_local), then ghosts.
@@ -170,11 +199,17 @@ namespace softsand
       std::vector<Tensor<1, 3>>          f_old, t_old;
       std::vector<double>                radius, mass, inv_mass, inv_inertia;
       std::vector<unsigned int>          n_contacts;
+      /// Sum of the contact stiffnesses and dampings on each grain.
+      std::vector<double>                grain_stiffness, grain_damping;
+      /// Local max over grains of sqrt(stiffness / m) dt and damping dt / m.
+      double stiffness_rate = 0, damping_rate = 0;
 
       /// Neighbour pairs (i < j in id order of the history) and the history
       /// of each; histories of the grain-wall contacts per local grain.
       std::vector<std::pair<unsigned int, unsigned int>> pairs;
       std::vector<ContactHistory>                        pair_history;
+      /// Effective radius and mass of each pair, fixed between rebuilds.
+      std::vector<double> pair_r_eff, pair_m_eff;
       /// Grain-wall candidates (local grain, wall) and their histories.
       std::vector<std::pair<unsigned int, unsigned int>> wall_pairs;
       std::vector<ContactHistory>                        wall_history;

@@ -156,8 +156,9 @@ namespace softsand
 
     /**
      * Check that every grain has a positive radius and its centre in
-     * @p domain, and that no two grains overlap by more than 1e-9 of the sum
-     * of their radii (O(N) with a cell list). Packs from files or lists are
+     * @p domain, and that no two grains overlap by more than
+     * @p max_overlap_ratio times their effective radius R* (and at least
+     * 1e-9 of the sum of their radii), with a cell list in O(N). Packs from files or lists are
      * the usual culprits; @p where names the source in the message
      * (e.g. "grains/file = pack.txt").
      */
@@ -165,7 +166,8 @@ namespace softsand
     void
     check_grains(const std::vector<Grain<dim>> &grains,
                  const BoundingBox<dim>        &domain,
-                 const std::string             &where);
+                 const std::string             &where,
+                 const double                   max_overlap_ratio = 0);
   } // namespace dem
 } // namespace softsand
 
