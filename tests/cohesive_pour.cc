@@ -25,8 +25,17 @@ main(int argc, char **argv)
           << ", mean speed below 0.1 mm/s: "
           << (r.at("mean_speed") < 1e-4 ? "yes" : "no")
           << ", lost grains " << r.at("lost_grains") << std::endl;
-  deallog << "max overlap / R* " << std::setprecision(2)
-          << r.at("max_overlap_ratio") << ", mean overlap / R* "
-          << r.at("mean_overlap_ratio") << ", coordination "
-          << std::setprecision(1) << r.at("coordination") << std::endl;
+  // The pack itself is chaotic (the order of force sums changes it), so
+  // its overlaps and coordination are checked against physical bands, not
+  // digits: cohesion holds pairs near their rest overlap 0.28 R* (without
+  // it, gravity alone gives overlaps near 1e-3 R*), no pair is pushed
+  // through (max < 0.6 R*), and the grains form a connected pack.
+  const double mean = r.at("mean_overlap_ratio"), max = r.at("max_overlap_ratio"),
+               z = r.at("coordination");
+  deallog << "mean overlap / R* in [0.15, 0.35]: "
+          << (mean > 0.15 && mean < 0.35 ? "yes" : "no")
+          << ", max overlap / R* in [0.28, 0.6]: "
+          << (max > 0.28 && max < 0.6 ? "yes" : "no")
+          << ", coordination in [2, 4]: " << (z > 2 && z < 4 ? "yes" : "no")
+          << std::endl;
 }

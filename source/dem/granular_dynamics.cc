@@ -307,6 +307,7 @@ namespace softsand
     {
       // Remember the histories of open contacts by grain ids.
       std::unordered_map<std::uint64_t, ContactHistory> old_pairs;
+      old_pairs.reserve(pairs.size());
       for (unsigned int k = 0; k < pairs.size(); ++k)
         if (pair_history[k].shear.norm_square() > 0 ||
             pair_history[k].rolling_torque.norm_square() > 0)
@@ -411,10 +412,8 @@ namespace softsand
                         }
                     }
             }
-          // Memory order of the pairs follows the grains: better cache use.
-          std::sort(pairs.begin(), pairs.end(), [](const auto &a, const auto &b) {
-            return std::min(a.first, a.second) < std::min(b.first, b.second);
-          });
+          // The pairs come out ordered by their smaller grain index (the
+          // outer loop), so memory order follows the grains.
         }
       pair_history.assign(pairs.size(), ContactHistory());
       pair_r_eff.resize(pairs.size());
@@ -461,7 +460,9 @@ namespace softsand
     GranularDynamics::adapt_time_step()
     {
       double rates[2] = {stiffness_rate, damping_rate};
-      if (parallel)
+      // A fixed step needs no agreement between ranks: check locally (a
+      // failing rank stops the job), no collective per step.
+      if (parallel && adaptive)
         Utilities::MPI::max(ArrayView<const double>(rates, 2),
                             comm,
                             ArrayView<double>(rates, 2));
