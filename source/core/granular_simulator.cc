@@ -32,16 +32,11 @@ namespace softsand
     void
     GranularSimulator::make_mesh(const double cell_size)
     {
-      const auto &m = parameters.mesh;
-      std::vector<unsigned int> cells(3);
-      for (unsigned int d = 0; d < 3; ++d)
-        cells[d] = std::clamp(static_cast<unsigned int>(
-                                (m.upper_corner[d] - m.lower_corner[d]) /
-                                cell_size),
-                              1u,
-                              64u);
-      GridGenerator::subdivided_hyper_rectangle(
-        triangulation, cells, m.lower_corner, m.upper_corner, true);
+      dem::make_contact_mesh(
+        triangulation,
+        BoundingBox<3>(std::make_pair(parameters.mesh.lower_corner,
+                                      parameters.mesh.upper_corner)),
+        cell_size);
     }
 
 

@@ -21,6 +21,7 @@ namespace softsand
       dem::GrainParameters<dim>::declare_parameters(prm);
       dem::DEMParameters::declare_parameters(prm);
       coupling::VoidFractionParameters::declare_parameters(prm);
+      coupling::CouplingParameters::declare_parameters(prm);
       fluid::FluidParameters::declare_parameters(prm);
       fluid::SolverParameters::declare_parameters(prm);
       fluid::BoundaryConditions<dim>::declare_parameters(prm);
@@ -38,6 +39,7 @@ namespace softsand
       grains.parse_parameters(prm);
       dem.parse_parameters(prm);
       void_fraction.parse_parameters(prm);
+      coupling.parse_parameters(prm);
       fluid.parse_parameters(prm);
       fluid_solver.parse_parameters(prm);
       boundary_conditions.parse_parameters(

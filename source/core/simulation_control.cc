@@ -13,22 +13,37 @@ namespace softsand
         "mode",
         "steady stokes",
         Patterns::Selection(
-          "steady stokes|steady navier stokes|transient|granular"),
+          "steady stokes|steady navier stokes|transient|granular|coupled"),
         "steady stokes: one Stokes-Brinkman solve; steady navier stokes: "
         "Newton or Picard iterations to the steady state of the penalized "
         "scheme; transient: BDF time marching of the paper's Eq. (6); "
         "granular: grains alone under contacts, walls and gravity (the "
-        "DEM; no fluid system is built).");
+        "DEM; no fluid system is built); coupled: grains moved by the DEM "
+        "in the fluid (CFD-DEM, subsection coupling).");
       prm.declare_entry("time step",
                         "1e-4",
                         Patterns::Double(0),
                         "Fluid time step (s). In the steady modes it is the "
                         "penalty time scale in rho (1 + Theta (1 - vf)) "
-                        "(1 - vf) / dt.");
+                        "(1 - vf) / dt. Coupled runs: the fluid step "
+                        "(transient fluid) or the largest coupling step "
+                        "(quasi-steady fluid).");
       prm.declare_entry("end time",
                         "1e-3",
                         Patterns::Double(0),
-                        "End time of a transient run (s).");
+                        "End time of a transient, granular or coupled run (s).");
+      prm.declare_entry("checkpoint interval",
+                        "0",
+                        Patterns::Integer(0),
+                        "Coupled runs: write a checkpoint (mesh, fluid "
+                        "fields, grains, contact histories, walls) every "
+                        "this many coupling steps into the output "
+                        "directory (0: never).");
+      prm.declare_entry("restart",
+                        "false",
+                        Patterns::Bool(),
+                        "Coupled runs: continue from the checkpoint in the "
+                        "output directory instead of starting anew.");
       prm.declare_entry("max time steps",
                         "1000000",
                         Patterns::Integer(1),
@@ -55,7 +70,9 @@ namespace softsand
       mode = (m == "steady stokes") ?
                Mode::steady_stokes :
                (m == "steady navier stokes" ? Mode::steady_navier_stokes :
-                (m == "granular" ? Mode::granular : Mode::transient));
+                (m == "granular" ? Mode::granular :
+                                   (m == "coupled" ? Mode::coupled :
+                                                     Mode::transient)));
       time_step = prm.get_double("time step");
       if (!(time_step > 0))
         throw_invalid_parameter("simulation control/time step",
@@ -65,11 +82,14 @@ namespace softsand
       max_time_steps         = prm.get_integer("max time steps");
       bdf_order              = (prm.get("time scheme") == "BDF1") ? 1 : 2;
       steady_state_tolerance = prm.get_double("steady state tolerance");
-      if ((mode == Mode::transient || mode == Mode::granular) &&
+      checkpoint_interval    = prm.get_integer("checkpoint interval");
+      restart                = prm.get_bool("restart");
+      if ((mode == Mode::transient || mode == Mode::granular ||
+           mode == Mode::coupled) &&
           !(end_time > 0))
         throw_invalid_parameter("simulation control/end time",
                                 prm.get("end time"),
-                                "a transient or granular run needs an end time > 0 s");
+                                "a transient, granular or coupled run needs an end time > 0 s");
       prm.leave_subsection();
     }
   } // namespace core

@@ -46,7 +46,7 @@ namespace softsand
 
     template <int dim>
     void
-    Simulator<dim>::make_mesh()
+    Simulator<dim>::make_mesh(const bool refine)
     {
       TimerOutput::Scope t(timer, "mesh");
       const auto        &m = parameters.mesh;
@@ -99,9 +99,14 @@ namespace softsand
         }
       GridGenerator::subdivided_hyper_rectangle(
         triangulation, cells, m.lower_corner, m.upper_corner, true);
+      if (!refine)
+        return;
       triangulation.refine_global(m.global_refinements);
 
-      if (resolve_grains)
+      if (resolve_grains &&
+          parameters.simulation_control.mode == SimulationControl::Mode::coupled)
+        adapt_mesh_to_grains(false);
+      else if (resolve_grains)
         {
           const double target =
             solid_field->locator().min_diameter() / m.cells_per_diameter;
@@ -122,6 +127,11 @@ namespace softsand
       if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         std::filesystem::create_directories(p.output.directory);
       MPI_Barrier(mpi_communicator);
+      if (p.simulation_control.mode == SimulationControl::Mode::coupled)
+        {
+          run_coupled();
+          return;
+        }
 
       {
         TimerOutput::Scope t(timer, "grains");
@@ -236,7 +246,8 @@ namespace softsand
     void
     Simulator<dim>::postprocess(const unsigned int step,
                                 const double       time,
-                                const bool         write_fields)
+                                const bool         write_fields,
+                                const bool         finish_row)
     {
       TimerOutput::Scope t(timer, "postprocess");
       const auto        &p   = parameters;
@@ -258,7 +269,10 @@ namespace softsand
       const double       rho  = p.fluid.density;
 
       // Forces on grains: the exact discrete reaction and the paper's Eq. (7).
-      coupling::GrainForces<dim> forces, forces_eq7;
+      auto &forces     = grain_forces;
+      auto &forces_eq7 = grain_forces_eq7;
+      forces           = coupling::GrainForces<dim>();
+      forces_eq7       = coupling::GrainForces<dim>();
       if (!grains.empty())
         {
           forces = coupling::compute_grain_forces(
@@ -355,7 +369,8 @@ namespace softsand
       // Keep the column order stable and readable.
       for (const auto &[name, value] : r)
         statistics->add_value(name, value);
-      statistics->write_row();
+      if (finish_row)
+        statistics->write_row();
       last_results = r;
 
       if (write_fields)

@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 
 #include <softsand/core/parameter_tools.h>
@@ -115,42 +116,24 @@ namespace softsand
               }
         }
       const types::particle_index first = particle_handler.n_global_particles();
-      GridTools::Cache<3> cache(triangulation, mapping());
-      typename Triangulation<3>::active_cell_iterator hint;
-      std::vector<double> p(property::n_properties, 0.);
-      // Points outside this rank's cells would send the cell search over
-      // the whole mesh: skip them by the bounding boxes of the own cells.
-      auto local_boxes = GridTools::compute_mesh_predicate_bounding_box(
-        triangulation, IteratorFilters::LocallyOwnedCell(), 1, false, 4);
-      for (auto &box : local_boxes)
-        box.extend(1e-10 * std::max(1e-300, box.side_length(0)));
+      std::vector<Point<3>>              centers(all.size());
+      std::vector<types::particle_index> ids(all.size());
+      std::vector<std::vector<double>>   properties(
+        all.size(), std::vector<double>(property::n_properties, 0.));
       for (unsigned int g = 0; g < all.size(); ++g)
         {
-          bool near = false;
-          for (const auto &box : local_boxes)
-            near = near || box.point_inside(all[g].center);
-          if (!near)
-            continue;
-          const auto found = GridTools::find_active_cell_around_point(
-            cache, all[g].center, hint);
-          if (found.first.state() != IteratorState::valid ||
-              !found.first->is_locally_owned())
-            continue;
-          hint = found.first;
-          std::fill(p.begin(), p.end(), 0.);
-          p[property::radius]  = all[g].radius;
-          p[property::density] = parameters.material.density;
+          centers[g]                        = all[g].center;
+          ids[g]                            = first + g;
+          std::vector<double> &p            = properties[g];
+          p[property::radius]               = all[g].radius;
+          p[property::density]              = parameters.material.density;
           for (unsigned int d = 0; d < 3; ++d)
             {
               p[property::velocity + d]         = all[g].velocity[d];
               p[property::angular_velocity + d] = all[g].angular_velocity[d];
             }
-          particle_handler.insert_particle(all[g].center,
-                                           found.second,
-                                           first + g,
-                                           found.first,
-                                           ArrayView<const double>(p));
         }
+      insert_local(centers, ids, properties);
       particle_handler.update_cached_numbers();
       const unsigned int expected = all.size();
       AssertThrow(particle_handler.n_global_particles() == first + expected,
@@ -165,7 +148,56 @@ namespace softsand
 
 
     void
+    GranularDynamics::insert_local(
+      const std::vector<Point<3>>              &centers,
+      const std::vector<types::particle_index> &ids,
+      const std::vector<std::vector<double>>   &properties)
+    {
+      GridTools::Cache<3> cache(triangulation, mapping());
+      typename Triangulation<3>::active_cell_iterator hint;
+      // Points outside this rank's cells would send the cell search over
+      // the whole mesh: skip them by the bounding boxes of the own cells.
+      // (Insertion by point location on each rank: deal.II 9.4's
+      // insert_global_particles() hangs when some ranks pass no points.)
+      auto local_boxes = GridTools::compute_mesh_predicate_bounding_box(
+        triangulation, IteratorFilters::LocallyOwnedCell(), 1, false, 4);
+      for (auto &box : local_boxes)
+        box.extend(1e-10 * std::max(1e-300, box.side_length(0)));
+      for (unsigned int g = 0; g < centers.size(); ++g)
+        {
+          bool near = false;
+          for (const auto &box : local_boxes)
+            near = near || box.point_inside(centers[g]);
+          if (!near)
+            continue;
+          const auto found =
+            GridTools::find_active_cell_around_point(cache, centers[g], hint);
+          if (found.first.state() != IteratorState::valid ||
+              !found.first->is_locally_owned())
+            continue;
+          hint = found.first;
+          particle_handler.insert_particle(centers[g],
+                                           found.second,
+                                           ids[g],
+                                           found.first,
+                                           ArrayView<const double>(properties[g]));
+        }
+    }
+
+
+    void
     GranularDynamics::initialize()
+    {
+      set_up_time_step();
+      rebuild_neighbor_lists();
+      compute_forces();
+      if (adaptive)
+        adapt_time_step();
+    }
+
+
+    void
+    GranularDynamics::set_up_time_step()
     {
       double r_min = std::numeric_limits<double>::max();
       r_max        = 0;
@@ -211,10 +243,6 @@ namespace softsand
 
       adaptive = (parameters.time_step == 0);
       dt_max   = dt;
-      rebuild_neighbor_lists();
-      compute_forces();
-      if (adaptive)
-        adapt_time_step();
     }
 
 
@@ -228,8 +256,10 @@ namespace softsand
                                                        0);
       id.resize(total);
       x.resize(total);
-      for (auto *a : {&v, &w, &f, &t, &f_fluid, &t_fluid})
+      for (auto *a : {&v, &w, &f, &t, &f_fluid, &t_fluid, &v_reference, &w_reference})
         a->resize(total);
+      fluid_response.resize(total);
+      fluid_rotational_response.resize(total);
       radius.resize(total);
       mass.resize(total);
       inv_mass.resize(total);
@@ -250,6 +280,10 @@ namespace softsand
         t[i]       = read_tensor(p, property::torque);
         f_fluid[i] = read_tensor(p, property::fluid_force);
         t_fluid[i] = read_tensor(p, property::fluid_torque);
+        v_reference[i] = read_tensor(p, property::reference_velocity);
+        w_reference[i] = read_tensor(p, property::reference_angular_velocity);
+        fluid_response[i]            = p[property::fluid_response];
+        fluid_rotational_response[i] = p[property::fluid_rotational_response];
       };
       unsigned int i = 0;
       for (const auto &particle : particle_handler)
@@ -276,6 +310,10 @@ namespace softsand
           write_tensor(t[i], p, property::torque);
           write_tensor(f_fluid[i], p, property::fluid_force);
           write_tensor(t_fluid[i], p, property::fluid_torque);
+          write_tensor(v_reference[i], p, property::reference_velocity);
+          write_tensor(w_reference[i], p, property::reference_angular_velocity);
+          p[property::fluid_response]            = fluid_response[i];
+          p[property::fluid_rotational_response] = fluid_rotational_response[i];
           p[property::contacts] = n_contacts[i];
           ++i;
         }
@@ -313,7 +351,11 @@ namespace softsand
             pair_history[k].rolling_torque.norm_square() > 0)
           old_pairs.emplace(pair_key(id[pairs[k].first], id[pairs[k].second]),
                             pair_history[k]);
+      old_pairs.merge(restored_pairs);
+      restored_pairs.clear();
       std::unordered_map<std::uint64_t, ContactHistory> old_wall_contacts;
+      old_wall_contacts.merge(restored_wall_contacts);
+      restored_wall_contacts.clear();
       for (unsigned int k = 0; k < wall_pairs.size(); ++k)
         if (wall_history[k].shear.norm_square() > 0 ||
             wall_history[k].rolling_torque.norm_square() > 0)
@@ -519,15 +561,18 @@ namespace softsand
     GranularDynamics::compute_forces()
     {
       const Tensor<1, 3> &g = parameters.gravity;
-      for (unsigned int i = 0; i < n_local; ++i)
-        {
-          f[i]          = mass[i] * g + f_fluid[i];
-          t[i]          = t_fluid[i];
-          n_contacts[i] = 0;
-        }
-      const bool cohesive = parameters.material.cohesion_energy_density > 0;
       grain_stiffness.assign(x.size(), 0.);
       grain_damping.assign(x.size(), 0.);
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          f[i] = mass[i] * g + f_fluid[i] -
+                 fluid_response[i] * (v[i] - v_reference[i]);
+          t[i] = t_fluid[i] -
+                 fluid_rotational_response[i] * (w[i] - w_reference[i]);
+          n_contacts[i]     = 0;
+          grain_damping[i]  = fluid_response[i];
+        }
+      const bool cohesive = parameters.material.cohesion_energy_density > 0;
 
       Tensor<1, 3> force, torque_i, torque_j;
       for (unsigned int k = 0; k < pairs.size(); ++k)
@@ -627,9 +672,59 @@ namespace softsand
 
 
     void
-    GranularDynamics::step()
+    GranularDynamics::advance_to(const double end_time)
+    {
+      const double tolerance = 1e-9 * std::max(dt, 1e-300);
+      while (current_time < end_time - tolerance)
+        step(end_time - current_time);
+    }
+
+
+    void
+    GranularDynamics::set_fluid_forces(
+      const std::vector<Tensor<1, 3>> &force,
+      const std::vector<Tensor<1, 3>> &torque,
+      const std::vector<double>       &response,
+      const std::vector<double>       &rotational_response)
+    {
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          AssertThrow(id[i] < force.size() && id[i] < torque.size() &&
+                        id[i] < response.size() &&
+                        id[i] < rotational_response.size(),
+                      ExcMessage("Fluid forces given for " +
+                                 std::to_string(force.size()) +
+                                 " grains, but grain id " +
+                                 std::to_string(id[i]) + " exists."));
+          // Replace the old fluid force in this step's total by the new one
+          // (whose velocity reference is the velocity now).
+          f[i] += force[id[i]] -
+                  (f_fluid[i] - fluid_response[i] * (v[i] - v_reference[i]));
+          t[i] += torque[id[i]] -
+                  (t_fluid[i] -
+                   fluid_rotational_response[i] * (w[i] - w_reference[i]));
+          f_fluid[i]                   = force[id[i]];
+          t_fluid[i]                   = torque[id[i]];
+          fluid_response[i]            = response[id[i]];
+          fluid_rotational_response[i] = rotational_response[id[i]];
+          v_reference[i]               = v[i];
+          w_reference[i]               = w[i];
+        }
+    }
+
+
+    void
+    GranularDynamics::step(const double max_duration)
     {
       adapt_time_step();
+      // Land on the end of the interval in equal steps, none above the
+      // stable one; a fixed step is restored afterwards.
+      const double nominal_dt = dt;
+      if (max_duration < std::numeric_limits<double>::max())
+        {
+          const double n = std::max(1., std::ceil(max_duration / dt - 1e-9));
+          dt = max_duration / n;
+        }
       const double half = 0.5 * dt;
       double       max_move2 = 0;
       // Kick, drift, then predict the end-of-step velocity with the old
@@ -692,6 +787,8 @@ namespace softsand
           for (auto &wall : walls)
             wall.advance(dt);
         }
+      if (!adaptive)
+        dt = nominal_dt;
     }
 
 
@@ -754,7 +851,7 @@ namespace softsand
 
 
     std::vector<Grain<3>>
-    GranularDynamics::gather_grains() const
+    GranularDynamics::gather_grains(std::vector<types::particle_index> *ids) const
     {
       std::vector<double> local;
       for (unsigned int i = 0; i < n_local; ++i)
@@ -787,8 +884,14 @@ namespace softsand
         return a.first < b.first;
       });
       std::vector<Grain<3>> result;
+      if (ids != nullptr)
+        ids->clear();
       for (const auto &g : grains)
-        result.push_back(g.second);
+        {
+          result.push_back(g.second);
+          if (ids != nullptr)
+            ids->push_back(static_cast<types::particle_index>(g.first));
+        }
       return result;
     }
 
@@ -798,6 +901,231 @@ namespace softsand
     {
       copy_to_particles();
       return particle_handler;
+    }
+
+
+    // State file: a header of scalars, the walls, the grains, then the
+    // contact histories; doubles in binary, so the restart is exact.
+    namespace
+    {
+      void
+      write_doubles(std::ostream &out, const std::vector<double> &values)
+      {
+        const std::uint64_t n = values.size();
+        out.write(reinterpret_cast<const char *>(&n), sizeof(n));
+        out.write(reinterpret_cast<const char *>(values.data()),
+                  n * sizeof(double));
+      }
+
+      std::vector<double>
+      read_doubles(std::istream &in)
+      {
+        std::uint64_t n = 0;
+        in.read(reinterpret_cast<char *>(&n), sizeof(n));
+        AssertThrow(in.good() && n < (std::uint64_t(1) << 40),
+                    ExcMessage("The DEM checkpoint is truncated or corrupt."));
+        std::vector<double> values(n);
+        in.read(reinterpret_cast<char *>(values.data()), n * sizeof(double));
+        AssertThrow(in.good(),
+                    ExcMessage("The DEM checkpoint is truncated or corrupt."));
+        return values;
+      }
+
+      constexpr unsigned int grain_record = 1 + 3 + property::n_properties;
+      constexpr unsigned int history_record = 2 + 6;
+    } // namespace
+
+
+    void
+    GranularDynamics::save_state(std::ostream &out) const
+    {
+      // Grains: id, position, all properties (forces included: velocity
+      // Verlet's first half kick uses the force of the last step).
+      std::vector<double> grains_local, pairs_local, walls_local;
+      for (unsigned int i = 0; i < n_local; ++i)
+        {
+          grains_local.push_back(id[i]);
+          for (unsigned int d = 0; d < 3; ++d)
+            grains_local.push_back(x[i][d]);
+          std::vector<double> p(property::n_properties, 0.);
+          p[property::radius]  = radius[i];
+          p[property::density] = mass[i] / (4. / 3. * M_PI * std::pow(radius[i], 3));
+          const std::pair<unsigned int, const Tensor<1, 3> *> vectors[] = {
+            {property::velocity, &v[i]},
+            {property::angular_velocity, &w[i]},
+            {property::force, &f[i]},
+            {property::torque, &t[i]},
+            {property::fluid_force, &f_fluid[i]},
+            {property::fluid_torque, &t_fluid[i]},
+            {property::reference_velocity, &v_reference[i]},
+            {property::reference_angular_velocity, &w_reference[i]}};
+          p[property::fluid_response]            = fluid_response[i];
+          p[property::fluid_rotational_response] = fluid_rotational_response[i];
+          for (const auto &[first, value] : vectors)
+            for (unsigned int d = 0; d < 3; ++d)
+              p[first + d] = (*value)[d];
+          p[property::contacts] = n_contacts[i];
+          grains_local.insert(grains_local.end(), p.begin(), p.end());
+        }
+      const auto add_history = [](std::vector<double>  &list,
+                                  const double          a,
+                                  const double          b,
+                                  const ContactHistory &h) {
+        if (h.shear.norm_square() == 0 && h.rolling_torque.norm_square() == 0)
+          return;
+        list.push_back(a);
+        list.push_back(b);
+        for (unsigned int d = 0; d < 3; ++d)
+          list.push_back(h.shear[d]);
+        for (unsigned int d = 0; d < 3; ++d)
+          list.push_back(h.rolling_torque[d]);
+      };
+      // A pair across ranks is held by both with the same history: keep
+      // the copy of the rank owning its first grain.
+      for (unsigned int k = 0; k < pairs.size(); ++k)
+        if (pairs[k].first < n_local)
+          add_history(pairs_local,
+                      id[pairs[k].first],
+                      id[pairs[k].second],
+                      pair_history[k]);
+      for (unsigned int k = 0; k < wall_pairs.size(); ++k)
+        add_history(walls_local,
+                    id[wall_pairs[k].first],
+                    wall_pairs[k].second,
+                    wall_history[k]);
+
+      const auto gather = [&](const std::vector<double> &local) {
+        std::vector<double> all;
+        for (const auto &part : Utilities::MPI::gather(comm, local, 0))
+          all.insert(all.end(), part.begin(), part.end());
+        return all;
+      };
+      const std::vector<double> grains_all = gather(grains_local);
+      const std::vector<double> pairs_all  = gather(pairs_local);
+      const std::vector<double> walls_all  = gather(walls_local);
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+
+      std::vector<double> header = {current_time,
+                                    dt,
+                                    double(n_steps),
+                                    double(n_builds),
+                                    double(lost_grains),
+                                    stiffness_rate,
+                                    damping_rate,
+                                    double(walls.size())};
+      write_doubles(out, header);
+      std::vector<double> wall_state;
+      for (const auto &wall : walls)
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            wall_state.push_back(wall.point[d]);
+          for (unsigned int d = 0; d < 3; ++d)
+            wall_state.push_back(wall.velocity[d]);
+          for (unsigned int d = 0; d < 3; ++d)
+            wall_state.push_back(wall.force[d]);
+          wall_state.push_back(wall.error_integral);
+        }
+      write_doubles(out, wall_state);
+      write_doubles(out, grains_all);
+      write_doubles(out, pairs_all);
+      write_doubles(out, walls_all);
+    }
+
+
+    void
+    GranularDynamics::load_state(std::istream &in)
+    {
+      const std::vector<double> header = read_doubles(in);
+      AssertThrow(header.size() == 8 && header[7] == walls.size(),
+                  ExcMessage("The DEM checkpoint was written with " +
+                             std::to_string(header.size() == 8 ? header[7] : -1) +
+                             " walls; this scene has " +
+                             std::to_string(walls.size()) +
+                             ": restart with the parameters of the run."));
+      const std::vector<double> wall_state = read_doubles(in);
+      for (unsigned int k = 0; k < walls.size(); ++k)
+        {
+          const double *w_k = &wall_state[10 * k];
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              walls[k].point[d]    = w_k[d];
+              walls[k].velocity[d] = w_k[3 + d];
+              walls[k].force[d]    = w_k[6 + d];
+            }
+          walls[k].error_integral = w_k[9];
+        }
+
+      const std::vector<double> grains_all = read_doubles(in);
+      const unsigned int        n_grains   = grains_all.size() / grain_record;
+      std::vector<Point<3>>              centers(n_grains);
+      std::vector<types::particle_index> ids(n_grains);
+      std::vector<std::vector<double>>   properties(n_grains);
+      for (unsigned int g = 0; g < n_grains; ++g)
+        {
+          const double *r = &grains_all[g * grain_record];
+          ids[g]          = static_cast<types::particle_index>(r[0]);
+          centers[g]      = Point<3>(r[1], r[2], r[3]);
+          properties[g].assign(r + 4, r + grain_record);
+        }
+      insert_local(centers, ids, properties);
+      particle_handler.update_cached_numbers();
+      AssertThrow(particle_handler.n_global_particles() == n_grains,
+                  ExcMessage("The DEM checkpoint holds grains outside this "
+                             "scene's domain: restart with the parameters of "
+                             "the run."));
+
+      const auto read_histories =
+        [&](std::unordered_map<std::uint64_t, ContactHistory> &target) {
+          const std::vector<double> list = read_doubles(in);
+          for (unsigned int k = 0; k + history_record <= list.size();
+               k += history_record)
+            {
+              ContactHistory h;
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  h.shear[d]          = list[k + 2 + d];
+                  h.rolling_torque[d] = list[k + 5 + d];
+                }
+              target[pair_key(static_cast<types::particle_index>(list[k]),
+                              static_cast<types::particle_index>(list[k + 1]))] = h;
+            }
+        };
+      read_histories(restored_pairs);
+      read_histories(restored_wall_contacts);
+
+      set_up_time_step();
+      current_time   = header[0];
+      dt             = header[1];
+      n_steps        = static_cast<unsigned long>(header[2]);
+      n_builds       = static_cast<unsigned long>(header[3]);
+      lost_grains    = static_cast<unsigned int>(header[4]);
+      stiffness_rate = header[5];
+      damping_rate   = header[6];
+      // The lists and histories; the forces of the last step come with the
+      // grains (evaluating the contacts again would advance the tangential
+      // springs twice).
+      rebuild_neighbor_lists();
+      // The build counts as the saved run's, which did not rebuild here.
+      --n_builds;
+    }
+
+
+    void
+    make_contact_mesh(parallel::distributed::Triangulation<3> &tria,
+                      const BoundingBox<3>                    &domain,
+                      const double                             min_cell_size)
+    {
+      std::vector<unsigned int> cells(3);
+      for (unsigned int d = 0; d < 3; ++d)
+        cells[d] = std::clamp(static_cast<unsigned int>(
+                                domain.side_length(d) /
+                                std::max(min_cell_size, 1e-300)),
+                              1u,
+                              64u);
+      const auto corners = domain.get_boundary_points();
+      GridGenerator::subdivided_hyper_rectangle(
+        tria, cells, corners.first, corners.second, true);
     }
   } // namespace dem
 } // namespace softsand

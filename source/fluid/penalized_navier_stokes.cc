@@ -80,6 +80,96 @@ namespace softsand
 
     template <int dim>
     void
+    PenalizedNavierStokes<dim>::set_moving_solids(const bool moving)
+    {
+      moving_solids = moving;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::prepare_for_coarsening_and_refinement()
+    {
+      solution_transfer = std::make_unique<
+        parallel::distributed::SolutionTransfer<dim, BlockVector>>(dof_handler);
+      solution_transfer->prepare_for_coarsening_and_refinement(
+        std::vector<const BlockVector *>{&solution,
+                                         &old_solution,
+                                         &older_solution});
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::set_solutions(
+      const std::vector<BlockVector *> &values)
+    {
+      // Hanging nodes of the new mesh take their parents' values; the
+      // other constraints (boundary, solids) are imposed by the next solve.
+      AffineConstraints<double> hanging(
+        DoFTools::extract_locally_relevant_dofs(dof_handler));
+      DoFTools::make_hanging_node_constraints(dof_handler, hanging);
+      hanging.close();
+      BlockVector *targets[3] = {&solution, &old_solution, &older_solution};
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          hanging.distribute(*values[k]);
+          *targets[k] = *values[k];
+        }
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::transfer_after_coarsening_and_refinement()
+    {
+      AssertThrow(solution_transfer != nullptr,
+                  ExcMessage("transfer_after_coarsening_and_refinement() "
+                             "without prepare_for_coarsening_and_refinement()"));
+      const unsigned int steps = steps_since_start;
+      setup_dofs();
+      steps_since_start = steps;
+      std::vector<BlockVector> values(
+        3, BlockVector(owned_partitioning, mpi_communicator));
+      std::vector<BlockVector *> pointers = {&values[0], &values[1], &values[2]};
+      solution_transfer->interpolate(pointers);
+      solution_transfer.reset();
+      set_solutions(pointers);
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::prepare_for_serialization()
+    {
+      solution_transfer = std::make_unique<
+        parallel::distributed::SolutionTransfer<dim, BlockVector>>(dof_handler);
+      solution_transfer->prepare_for_serialization(
+        std::vector<const BlockVector *>{&solution,
+                                         &old_solution,
+                                         &older_solution});
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::deserialize(const unsigned int steps_done)
+    {
+      setup_dofs();
+      steps_since_start = steps_done;
+      std::vector<BlockVector> values(
+        3, BlockVector(owned_partitioning, mpi_communicator));
+      std::vector<BlockVector *> pointers = {&values[0], &values[1], &values[2]};
+      parallel::distributed::SolutionTransfer<dim, BlockVector> transfer(
+        dof_handler);
+      transfer.deserialize(pointers);
+      solution_transfer.reset();
+      set_solutions(pointers);
+    }
+
+
+    template <int dim>
+    void
     PenalizedNavierStokes<dim>::set_time(const double t)
     {
       time = t;
@@ -89,7 +179,7 @@ namespace softsand
 
     template <int dim>
     void
-    PenalizedNavierStokes<dim>::make_constraints()
+    PenalizedNavierStokes<dim>::make_constraints(const bool with_solids)
     {
       const IndexSet relevant =
         DoFTools::extract_locally_relevant_dofs(dof_handler);
@@ -101,7 +191,7 @@ namespace softsand
                                                     time);
       rigid_dof_grain.clear();
       hanging_rigid_parents.clear();
-      if (rigid_nodes() || constrained_interiors())
+      if (with_solids && (rigid_nodes() || constrained_interiors()))
         {
           // Theta -> infinity: nodes inside a grain move with it (rigid
           // nodes: every node inside; penalization: the nodes of cells
@@ -228,7 +318,8 @@ namespace softsand
       relevant_partitioning = {relevant.get_view(0, n_u),
                                relevant.get_view(n_u, n_u + n_p)};
 
-      make_constraints();
+      // Moving solids: a sparsity that does not depend on where they are.
+      make_constraints(!moving_solids);
 
       {
         system_matrix.clear();
@@ -241,6 +332,11 @@ namespace softsand
         BlockDynamicSparsityPattern dsp(relevant_partitioning);
         DoFTools::make_sparsity_pattern(
           dof_handler, coupling, dsp, constraints, false);
+        // Moving solids pin pressure nodes they enclose (p = 0): those rows
+        // need the diagonal that the pressure-pressure block lacks.
+        if (moving_solids)
+          for (const auto i : owned)
+            dsp.add(i, i);
         SparsityTools::distribute_sparsity_pattern(dsp,
                                                    owned,
                                                    mpi_communicator,
@@ -855,6 +951,14 @@ namespace softsand
                                         const unsigned int bdf_order)
     {
       statistics      = SolveStatistics();
+      // The history moves at the start of a step, so that after it u^n and
+      // u^{n-1} are still there for the reaction force (a moving grain's
+      // force needs u~ of this step).
+      if (steps_since_start > 0)
+        {
+          older_solution = old_solution;
+          old_solution   = solution;
+        }
       const unsigned int order = (steps_since_start == 0) ? 1 : bdf_order;
       last_time_step  = dt;
       last_bdf_order  = order;
@@ -872,9 +976,6 @@ namespace softsand
       u = solution;
       last_change =
         change.block(0).l2_norm() / std::max(u.block(0).l2_norm(), 1e-300);
-
-      older_solution = old_solution;
-      old_solution   = solution;
       ++steps_since_start;
     }
 
@@ -905,27 +1006,54 @@ namespace softsand
       if (rigid_nodes())
         return;
       const FEValuesExtractors::Vector velocities(0);
-      std::vector<Tensor<1, dim>>      u;
+      std::vector<Tensor<1, dim>>      u, u_old, u_older;
+      const double rho = fluid_parameters.density;
+      const double rho_theta =
+        fluid_parameters.density * fluid_parameters.theta;
       for_each_covered_cell(
         update_values | update_quadrature_points | update_JxW_values,
         [&](const FEValues<dim>               &fe_values,
             const std::vector<double>         &vf,
             const std::vector<Tensor<1, dim>> &u_s,
             const std::vector<int>            &index) {
-          u.resize(vf.size());
+          const unsigned int n_q = vf.size();
+          u.resize(n_q);
           fe_values[velocities].get_function_values(solution, u);
-          for (unsigned int q = 0; q < vf.size(); ++q)
+          if (!last_was_steady)
+            {
+              u_old.resize(n_q);
+              u_older.resize(n_q);
+              fe_values[velocities].get_function_values(old_solution, u_old);
+              fe_values[velocities].get_function_values(older_solution,
+                                                        u_older);
+            }
+          for (unsigned int q = 0; q < n_q; ++q)
             if (index[q] >= 0 && vf[q] < 1)
               {
-                // The part of the penalization term owed to the solid:
-                // (1 - vf) rho (1 + Theta (1 - vf)) (u - u_s) / dt. For a
-                // steady state it is the Brinkman term beta (u - u_s).
-                const double coefficient =
-                  brinkman_coefficient(vf[q], last_time_step) *
-                  (last_was_steady || last_bdf_order == 1 ? 1. : 1.5);
+                // The penalty force on the fluid, less the physical inertia
+                // of the fluid the grain displaces: rho Theta (1 - vf) E / dt
+                // with E = u^{n+1} - u~ (BDF1; BDF2 alike) and u~ = vf u^n +
+                // (1 - vf) u_s. E stays small when the grain accelerates
+                // (the covered fluid follows it within the step), whereas
+                // rho* (1 - vf)(u^{n+1} - u_s) / dt would charge the grain
+                // with the fictitious inertia rho Theta of the covered
+                // fluid. Steady: the Brinkman term beta (u - u_s), the
+                // fixed point of the transient scheme (the two agree to
+                // O(1/Theta)).
+                const double   solid = 1. - vf[q];
+                Tensor<1, dim> E;
+                if (last_was_steady)
+                  E = u[q] - u_s[q];
+                else if (last_bdf_order == 1)
+                  E = u[q] - (vf[q] * u_old[q] + solid * u_s[q]);
+                else
+                  E = 1.5 * u[q] - 2. * (vf[q] * u_old[q] + solid * u_s[q]) +
+                      0.5 * (vf[q] * u_older[q] + solid * u_s[q]);
+                const double density =
+                  last_was_steady ? rho + rho_theta * solid : rho_theta;
                 f(index[q],
                   fe_values.quadrature_point(q),
-                  coefficient * (u[q] - u_s[q]) * fe_values.JxW(q));
+                  (density * solid / last_time_step) * E * fe_values.JxW(q));
               }
         });
     }

@@ -30,13 +30,19 @@ namespace softsand
       names[dem::property::radius]   = "radius";
       names[dem::property::density]  = "density";
       names[dem::property::contacts] = "contacts";
+      names[dem::property::fluid_response] = "fluid_response";
+      names[dem::property::fluid_rotational_response] =
+        "fluid_rotational_response";
       const std::pair<unsigned int, const char *> vectors[] = {
         {dem::property::velocity, "velocity"},
         {dem::property::angular_velocity, "angular_velocity"},
         {dem::property::force, "force"},
         {dem::property::torque, "torque"},
         {dem::property::fluid_force, "fluid_force"},
-        {dem::property::fluid_torque, "fluid_torque"}};
+        {dem::property::fluid_torque, "fluid_torque"},
+        {dem::property::reference_velocity, "reference_velocity"},
+        {dem::property::reference_angular_velocity,
+         "reference_angular_velocity"}};
       for (const auto &[first, name] : vectors)
         for (unsigned int d = 0; d < 3; ++d)
           {

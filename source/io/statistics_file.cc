@@ -2,7 +2,9 @@
 
 #include <softsand/io/statistics_file.h>
 
+#include <algorithm>
 #include <iomanip>
+#include <sstream>
 
 namespace softsand
 {
@@ -11,10 +13,50 @@ namespace softsand
     using namespace dealii;
 
     StatisticsFile::StatisticsFile(const std::string &filename,
-                                   const MPI_Comm     comm)
+                                   const MPI_Comm     comm,
+                                   const long         resume_after_step)
       : is_writer(Utilities::MPI::this_mpi_process(comm) == 0)
       , filename(filename)
     {
+      if (resume_after_step >= 0)
+        {
+          // Every rank learns the columns (write_row checks them).
+          std::ifstream in(filename);
+          AssertThrow(in.good(),
+                      ExcMessage("Cannot continue the statistics file <" +
+                                 filename + ">: it does not exist."));
+          std::string header;
+          std::getline(in, header);
+          std::istringstream names(header.substr(header.find('#') + 1));
+          for (std::string c; names >> c;)
+            columns.push_back(c);
+          const auto step_column =
+            std::find(columns.begin(), columns.end(), "step") - columns.begin();
+          AssertThrow(step_column < long(columns.size()),
+                      ExcMessage("The statistics file <" + filename +
+                                 "> has no step column to continue after."));
+          std::vector<std::string> kept;
+          for (std::string line; std::getline(in, line);)
+            {
+              std::istringstream values(line);
+              double             value = 0;
+              for (long k = 0; k <= step_column; ++k)
+                values >> value;
+              if (values && value <= resume_after_step)
+                kept.push_back(line);
+            }
+          in.close();
+          MPI_Barrier(comm);
+          if (is_writer)
+            {
+              file.open(filename);
+              file << header << '\n';
+              for (const auto &line : kept)
+                file << line << '\n';
+              file.flush();
+            }
+          return;
+        }
       if (is_writer)
         {
           file.open(filename);
@@ -53,9 +95,20 @@ namespace softsand
               file << '\n';
             }
         }
-      AssertThrow(row.size() == columns.size(),
-                  ExcMessage("Internal error: statistics row with a "
-                             "different set of columns."));
+      bool same = row.size() == columns.size();
+      for (unsigned int i = 0; same && i < row.size(); ++i)
+        same = row[i].first == columns[i];
+      if (!same)
+        {
+          std::string got, expected;
+          for (const auto &entry : row)
+            got += " " + entry.first;
+          for (const auto &c : columns)
+            expected += " " + c;
+          AssertThrow(false,
+                      ExcMessage("Internal error: statistics row with the "
+                                 "columns" + got + " instead of" + expected));
+        }
       if (is_writer)
         {
           file << std::setprecision(10);

@@ -5,6 +5,7 @@
 
 #include <softsand/core/mesh_parameters.h>
 #include <softsand/core/simulation_control.h>
+#include <softsand/coupling/coupling_parameters.h>
 #include <softsand/coupling/grain_solid_field.h>
 #include <softsand/dem/dem_parameters.h>
 #include <softsand/dem/grain_parameters.h>
@@ -30,6 +31,7 @@ namespace softsand
       dem::GrainParameters<dim>            grains;
       dem::DEMParameters                   dem;
       coupling::VoidFractionParameters     void_fraction;
+      coupling::CouplingParameters         coupling;
       fluid::FluidParameters               fluid;
       fluid::SolverParameters              fluid_solver;
       fluid::BoundaryConditions<dim>       boundary_conditions;

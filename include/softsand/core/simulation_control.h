@@ -21,7 +21,8 @@ namespace softsand
         steady_stokes,
         steady_navier_stokes,
         transient,
-        granular
+        granular,
+        coupled
       };
 
       Mode         mode = Mode::steady_stokes;
@@ -35,6 +36,10 @@ namespace softsand
       /// Transient runs stop when the relative velocity change per step
       /// falls below this value (0: never).
       double       steady_state_tolerance = 0;
+      /// Coupled runs: checkpoint every this many steps (0: never), and
+      /// whether to continue from the checkpoint.
+      unsigned int checkpoint_interval = 0;
+      bool         restart             = false;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -44,7 +49,8 @@ namespace softsand
       bool
       is_steady() const
       {
-        return mode != Mode::transient && mode != Mode::granular;
+        return mode == Mode::steady_stokes ||
+               mode == Mode::steady_navier_stokes;
       }
     };
   } // namespace core

@@ -7,7 +7,9 @@
 #include <deal.II/distributed/tria.h>
 
 #include <softsand/core/parameters.h>
+#include <softsand/coupling/grain_forces.h>
 #include <softsand/coupling/grain_solid_field.h>
+#include <softsand/dem/granular_dynamics.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 #include <softsand/io/field_output.h>
 #include <softsand/io/statistics_file.h>
@@ -49,10 +51,37 @@ namespace softsand
       }
 
     private:
+      /// The box mesh, refined around the grains unless @p refine is false
+      /// (a restart loads the refinement).
       void
-      make_mesh();
+      make_mesh(const bool refine = true);
+      /// Fluid results of the current state into the statistics row (and
+      /// fields to files); with @p finish_row the row is written, else the
+      /// caller adds to it first (the coupled loop adds the grains').
       void
-      postprocess(const unsigned int step, const double time, const bool write_fields);
+      postprocess(const unsigned int step,
+                  const double       time,
+                  const bool         write_fields,
+                  const bool         finish_row = true);
+
+      /// The coupled CFD-DEM loop (mode = coupled; 3D).
+      void
+      run_coupled();
+      /// Grains from the DEM (all ranks) and the solid field built on them.
+      void
+      update_grains_from_dem();
+      /// Refine and coarsen the fluid mesh until it fits the grains, the
+      /// fluid fields transferred (@p transfer) to the new mesh.
+      unsigned int
+      adapt_mesh_to_grains(const bool transfer);
+      /// Largest grain displacement since the last mesh adaptation.
+      double
+      max_displacement_since_adaptation() const;
+      void
+      write_checkpoint(const unsigned int step, const double time);
+      /// Returns the step and time of the checkpoint.
+      std::pair<unsigned int, double>
+      read_checkpoint();
       void
       print_results() const;
 
@@ -70,6 +99,17 @@ namespace softsand
       std::unique_ptr<io::StatisticsFile>              statistics;
       std::map<std::string, double>                    last_results;
       std::unique_ptr<io::FieldOutput<dim>>            field_output;
+
+      // Coupled runs only: the DEM on its own coarse mesh (cells at least
+      // one contact range wide, so that its ghost layer is the contact
+      // halo), the grain ids behind 'grains', where the grains were when
+      // the fluid mesh was last adapted, and the last fluid forces.
+      std::unique_ptr<parallel::distributed::Triangulation<3>> dem_triangulation;
+      std::unique_ptr<dem::GranularDynamics>                   dem;
+      std::vector<types::particle_index>                       grain_ids;
+      std::vector<Point<dim>>                                  centers_at_adaptation;
+      coupling::GrainForces<dim>                               grain_forces;
+      coupling::GrainForces<dim>                               grain_forces_eq7;
     };
 
     /// Read @p filename and run the scene in its dimension.

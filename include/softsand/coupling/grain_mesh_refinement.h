@@ -27,6 +27,24 @@ namespace softsand
                          const unsigned int max_level,
                          const bool         uniform);
 
+    /**
+     * Flag the mesh to follow moving grains (no execution): refine cells
+     * within @p margin of a grain surface whose edge is above
+     * @p target_cell_size; coarsen cells finer than @p base_level whose
+     * parent (grown by @p margin) meets no grain surface, i.e. grain
+     * interiors and open fluid the grains have left. The margin lets grains
+     * move that far before the mesh must follow. Returns whether any cell
+     * of any rank is flagged (after p4est's 2:1 smoothing).
+     */
+    template <int dim>
+    bool
+    flag_cells_around_grains(parallel::distributed::Triangulation<dim> &tria,
+                             const GrainLocator<dim>                   &locator,
+                             const double       target_cell_size,
+                             const double       margin,
+                             const unsigned int base_level,
+                             const unsigned int max_level);
+
     /// Smallest cell edge of the mesh (over all ranks).
     template <int dim>
     double

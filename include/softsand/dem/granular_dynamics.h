@@ -12,6 +12,8 @@
 #include <softsand/dem/walls.h>
 
 #include <cstdint>
+#include <limits>
+#include <unordered_map>
 #include <vector>
 
 namespace softsand
@@ -26,7 +28,11 @@ namespace softsand
       constexpr unsigned int radius = 0, density = 1, velocity = 2,
                              angular_velocity = 5, force = 8, torque = 11,
                              fluid_force = 14, fluid_torque = 17,
-                             contacts = 20, n_properties = 21;
+                             contacts = 20, fluid_response = 21,
+                             fluid_rotational_response = 22,
+                             reference_velocity = 23,
+                             reference_angular_velocity = 26,
+                             n_properties = 29;
     }
 
     /// Whole-system numbers of the current state (all ranks agree).
@@ -78,9 +84,33 @@ namespace softsand
       void
       initialize();
 
-      /// One velocity-Verlet step.
+      /// One velocity-Verlet step. With @p max_duration, the step is
+      /// shortened so that whole steps land on current time + max_duration.
       void
-      step();
+      step(const double max_duration = std::numeric_limits<double>::max());
+
+      /// Steps (each stable, the last ones shortened) until the time is
+      /// @p end_time: the DEM sub-steps under one fluid step.
+      void
+      advance_to(const double end_time);
+
+      /**
+       * Hold the fluid force and torque on each grain until the next call
+       * (the coupled loop's fluid step). Indexed by grain id; every rank
+       * passes the whole lists. During the sub-steps the force follows the
+       * grain's velocity v linearly, F - K (v - v_n) with v_n the velocity
+       * now and K = @p response (N s/m; torque: @p rotational_response,
+       * N m s), the fluid's estimated resistance to a change of the
+       * grain's velocity: explicit coupling of a held force is unstable
+       * when that resistance is large against the grain's inertia over a
+       * coupling step. The total force of this step is corrected at once,
+       * so the next half kick already sees the new fluid force.
+       */
+      void
+      set_fluid_forces(const std::vector<Tensor<1, 3>> &force,
+                       const std::vector<Tensor<1, 3>> &torque,
+                       const std::vector<double>       &response,
+                       const std::vector<double>       &rotational_response);
 
       double
       time() const
@@ -138,9 +168,10 @@ namespace softsand
         return walls;
       }
 
-      /// All grains, gathered on every rank, sorted by id.
+      /// All grains, gathered on every rank, sorted by id; with @p ids, also
+      /// their ids (grains that left the domain are missing).
       std::vector<Grain<3>>
-      gather_grains() const;
+      gather_grains(std::vector<types::particle_index> *ids = nullptr) const;
 
       /// The particles with current properties (for output).
       const Particles::ParticleHandler<3> &
@@ -152,7 +183,31 @@ namespace softsand
         return law;
       }
 
+      /**
+       * Write the whole state (grains with ids and forces, contact
+       * histories, walls, time and step) to @p out on rank 0; collective.
+       * load_state() on a GranularDynamics built with the same parameters
+       * (and any number of ranks) continues the run as if uninterrupted.
+       */
+      void
+      save_state(std::ostream &out) const;
+
+      /// Replace initialize(): read the state that save_state() wrote (every
+      /// rank reads the same stream).
+      void
+      load_state(std::istream &in);
+
     private:
+      /// Insert the grains with the given ids and property rows whose
+      /// centres lie in this rank's cells.
+      void
+      insert_local(const std::vector<Point<3>>              &centers,
+                   const std::vector<types::particle_index> &ids,
+                   const std::vector<std::vector<double>>   &properties);
+      /// Grain size range, Verlet skin, Rayleigh time and the (checked)
+      /// time step.
+      void
+      set_up_time_step();
       void
       copy_from_particles();
       void
@@ -197,6 +252,9 @@ namespace softsand
       std::vector<Point<3>>              x, x_at_build;
       std::vector<Tensor<1, 3>>          v, w, f, t, f_fluid, t_fluid;
       std::vector<Tensor<1, 3>>          f_old, t_old;
+      /// Linear response of the held fluid force (see set_fluid_forces()).
+      std::vector<double>                fluid_response, fluid_rotational_response;
+      std::vector<Tensor<1, 3>>          v_reference, w_reference;
       std::vector<double>                radius, mass, inv_mass, inv_inertia;
       std::vector<unsigned int>          n_contacts;
       /// Sum of the contact stiffnesses and dampings on each grain.
@@ -213,7 +271,21 @@ namespace softsand
       /// Grain-wall candidates (local grain, wall) and their histories.
       std::vector<std::pair<unsigned int, unsigned int>> wall_pairs;
       std::vector<ContactHistory>                        wall_history;
+      /// Histories read by load_state(), taken up by the next list build
+      /// (keys: grain ids, or grain id and wall index).
+      std::unordered_map<std::uint64_t, ContactHistory> restored_pairs,
+        restored_wall_contacts;
     };
+
+    /**
+     * The DEM's home mesh for parallel distribution: the box @p domain in
+     * cubes at least @p min_cell_size wide (one contact range, 2 r_max +
+     * skin), so that deal.II's ghost-cell layer is the contact halo.
+     */
+    void
+    make_contact_mesh(parallel::distributed::Triangulation<3> &tria,
+                      const BoundingBox<3>                    &domain,
+                      const double                             min_cell_size);
   } // namespace dem
 } // namespace softsand
 

@@ -6,6 +6,7 @@
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/timer.h>
 
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -79,6 +80,42 @@ namespace softsand
       /// The solids seen by the fluid (nullptr: pure fluid).
       void
       set_solid_field(const SolidField<dim> *solids);
+
+      /**
+       * Solids that move between solves (the coupled loop): the nodes they
+       * constrain change from solve to solve, so the matrix sparsity is
+       * built without them (hanging nodes and boundary conditions only)
+       * and stays valid; call before setup_dofs().
+       */
+      void
+      set_moving_solids(const bool moving);
+
+      /// Before the mesh changes: pack the current and the two previous
+      /// solutions for transfer to the new mesh.
+      void
+      prepare_for_coarsening_and_refinement();
+
+      /// After the mesh changed: new dofs and sparsity, and the packed
+      /// solutions interpolated onto them; BDF history is kept.
+      void
+      transfer_after_coarsening_and_refinement();
+
+      /// Attach the current and previous solutions to the triangulation
+      /// for Triangulation::save() (checkpoint).
+      void
+      prepare_for_serialization();
+
+      /// After Triangulation::load(): dofs and the solutions read back,
+      /// with the BDF step count @p steps_done of the checkpoint.
+      void
+      deserialize(const unsigned int steps_done);
+
+      /// Time steps since start_time_stepping() (BDF1 on the first).
+      unsigned int
+      n_steps_done() const
+      {
+        return steps_since_start;
+      }
 
       /// Time of the boundary conditions and the body force.
       void
@@ -172,8 +209,14 @@ namespace softsand
         transient
       };
 
+      /// Hanging nodes, boundary conditions and (with @p with_solids) the
+      /// nodes that solids constrain.
       void
-      make_constraints();
+      make_constraints(const bool with_solids = true);
+      /// Fully distributed copies of the three solutions in the ghosted
+      /// vectors, with hanging-node values restored.
+      void
+      set_solutions(const std::vector<BlockVector *> &values);
       /// Cell matrix, right-hand side and dof indices before constraints.
       using CellCallback =
         std::function<void(const typename DoFHandler<dim>::active_cell_iterator &,
@@ -250,6 +293,10 @@ namespace softsand
       BlockVector system_rhs;
 
       const SolidField<dim>          *solid_field = nullptr;
+      bool                             moving_solids = false;
+      std::unique_ptr<
+        parallel::distributed::SolutionTransfer<dim, BlockVector>>
+        solution_transfer;
       std::unique_ptr<FunctionParser<dim>> body_force;
       double                           time              = 0;
       /// dt the reaction force refers to and whether it is a steady state.

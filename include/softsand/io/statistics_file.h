@@ -20,7 +20,14 @@ namespace softsand
     class StatisticsFile
     {
     public:
-      StatisticsFile(const std::string &filename, const MPI_Comm comm);
+      /// A new table, or with @p resume_after_step >= 0 the existing one
+      /// continued after its rows up to that step (a restarted run: rows the
+      /// stopped run wrote after its checkpoint are dropped).
+      StatisticsFile(const std::string &filename,
+                     const MPI_Comm     comm,
+                     const long         resume_after_step = new_file);
+
+      static constexpr long new_file = -1;
 
       /// Set a column of the current row (the first row fixes the columns).
       void
