@@ -310,13 +310,15 @@ namespace softsand
       old_pairs.reserve(pairs.size());
       for (unsigned int k = 0; k < pairs.size(); ++k)
         if (pair_history[k].shear.norm_square() > 0 ||
-            pair_history[k].rolling_torque.norm_square() > 0)
+            pair_history[k].rolling_torque.norm_square() > 0 ||
+            pair_history[k].damping_potential > 0)
           old_pairs.emplace(pair_key(id[pairs[k].first], id[pairs[k].second]),
                             pair_history[k]);
       std::unordered_map<std::uint64_t, ContactHistory> old_wall_contacts;
       for (unsigned int k = 0; k < wall_pairs.size(); ++k)
         if (wall_history[k].shear.norm_square() > 0 ||
-            wall_history[k].rolling_torque.norm_square() > 0)
+            wall_history[k].rolling_torque.norm_square() > 0 ||
+            wall_history[k].damping_potential > 0)
           old_wall_contacts.emplace(pair_key(id[wall_pairs[k].first],
                                              wall_pairs[k].second),
                                     wall_history[k]);
@@ -525,6 +527,7 @@ namespace softsand
           t[i]          = t_fluid[i];
           n_contacts[i] = 0;
         }
+      damping_kick.assign(n_local, Tensor<1, 3>());
       const bool cohesive = parameters.material.cohesion_energy_density > 0;
       grain_stiffness.assign(x.size(), 0.);
       grain_damping.assign(x.size(), 0.);
@@ -540,6 +543,17 @@ namespace softsand
           ContactHistory    &h   = pair_history[k];
           if (d2 >= rs * rs)
             {
+              if (h.damping_potential > 0)
+                {
+                  // Opened during the step: its damping impulse since the
+                  // last step returns to zero.
+                  const Tensor<1, 3> kick =
+                    (law.separation_impulse(h, dt) / std::sqrt(d2)) * d;
+                  if (i < n_local)
+                    damping_kick[i] += kick;
+                  if (j < n_local)
+                    damping_kick[j] -= kick;
+                }
               h = ContactHistory();
               continue;
             }
@@ -559,10 +573,10 @@ namespace softsand
               const double s   = d2 - rj2 + ri2;
               area = M_PI * std::max(0., (4 * d2 * ri2 - s * s) / (4 * d2));
             }
-          double stiffness, damping;
+          double stiffness, damping, impulse;
           law.evaluate(n, delta, li, lj, r_eff, m_eff, v_rel, w[i] - w[j],
                        area, dt, h, force, torque_i, torque_j, stiffness,
-                       damping);
+                       damping, impulse);
           grain_stiffness[i] += stiffness;
           grain_stiffness[j] += stiffness;
           grain_damping[i] += damping;
@@ -571,12 +585,14 @@ namespace softsand
             {
               f[i] += force;
               t[i] += torque_i;
+              damping_kick[i] += impulse * n;
               ++n_contacts[i];
             }
           if (j < n_local)
             {
               f[j] -= force;
               t[j] += torque_j;
+              damping_kick[j] -= impulse * n;
               ++n_contacts[j];
             }
         }
@@ -592,6 +608,8 @@ namespace softsand
           ContactHistory    &h     = wall_history[k];
           if (delta <= 0)
             {
+              if (h.damping_potential > 0)
+                damping_kick[i] += law.separation_impulse(h, dt) * n;
               h = ContactHistory();
               continue;
             }
@@ -600,12 +618,13 @@ namespace softsand
             v[i] - wall.velocity - cross_product_3d(li * w[i], n);
           const double area =
             cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
-          double stiffness, damping;
+          double stiffness, damping, impulse;
           law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, w[i],
                        area, dt, h, force, torque_i, torque_j, stiffness,
-                       damping);
+                       damping, impulse);
           grain_stiffness[i] += stiffness;
           grain_damping[i] += damping;
+          damping_kick[i] += impulse * n;
           f[i] += force;
           t[i] += torque_i;
           wall.force -= force;
@@ -634,9 +653,11 @@ namespace softsand
       double       max_move2 = 0;
       // Kick, drift, then predict the end-of-step velocity with the old
       // force (v + dt/2 a_n): the damping and the tangential spring then see
-      // a second-order velocity instead of the half-step one, which keeps
-      // the restitution of strongly damped contacts accurate at 20% of the
-      // Rayleigh time; the final kick corrects with the new force.
+      // a second-order velocity instead of the half-step one; the final
+      // kick corrects with the new force, and puts the normal damping
+      // impulse of the step at Gamma(delta_new) - Gamma(delta_old) exactly
+      // (ContactLaw): restitution then stays within 0.7% of the input for
+      // e >= 0.1 at 0.2 T_R, wherever in a step a contact starts.
       for (unsigned int i = 0; i < n_local; ++i)
         {
           v[i] += (half * inv_mass[i]) * f[i];
@@ -672,7 +693,8 @@ namespace softsand
       compute_forces();
       for (unsigned int i = 0; i < n_local; ++i)
         {
-          v[i] += (half * inv_mass[i]) * (f[i] - f_old[i]);
+          v[i] += (half * inv_mass[i]) * (f[i] - f_old[i]) +
+                  inv_mass[i] * damping_kick[i];
           w[i] += (half * inv_inertia[i]) * (t[i] - t_old[i]);
         }
 

@@ -197,6 +197,9 @@ namespace softsand
       std::vector<Point<3>>              x, x_at_build;
       std::vector<Tensor<1, 3>>          v, w, f, t, f_fluid, t_fluid;
       std::vector<Tensor<1, 3>>          f_old, t_old;
+      /// Normal damping impulses (N s) that the end-of-step kick adds
+      /// (ContactLaw::evaluate()), per local grain.
+      std::vector<Tensor<1, 3>>          damping_kick;
       std::vector<double>                radius, mass, inv_mass, inv_inertia;
       std::vector<unsigned int>          n_contacts;
       /// Sum of the contact stiffnesses and dampings on each grain.
