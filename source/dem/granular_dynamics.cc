@@ -598,7 +598,10 @@ namespace softsand
         }
 
       for (auto &wall : walls)
-        wall.force = 0;
+        {
+          wall.force        = 0;
+          wall.normal_force = 0;
+        }
       for (unsigned int k = 0; k < wall_pairs.size(); ++k)
         {
           const unsigned int i    = wall_pairs[k].first;
@@ -628,6 +631,7 @@ namespace softsand
           f[i] += force;
           t[i] += torque_i;
           wall.force -= force;
+          wall.normal_force += force * n;
         }
 
       // Explicit stability: omega dt and c dt of the stiffest grain. Hertz
@@ -702,14 +706,20 @@ namespace softsand
         {
           if (parallel)
             {
-              std::vector<double> forces(3 * walls.size());
+              std::vector<double> forces(4 * walls.size());
               for (unsigned int k = 0; k < walls.size(); ++k)
-                for (unsigned int d = 0; d < 3; ++d)
-                  forces[3 * k + d] = walls[k].force[d];
+                {
+                  for (unsigned int d = 0; d < 3; ++d)
+                    forces[4 * k + d] = walls[k].force[d];
+                  forces[4 * k + 3] = walls[k].normal_force;
+                }
               Utilities::MPI::sum(forces, comm, forces);
               for (unsigned int k = 0; k < walls.size(); ++k)
-                for (unsigned int d = 0; d < 3; ++d)
-                  walls[k].force[d] = forces[3 * k + d];
+                {
+                  for (unsigned int d = 0; d < 3; ++d)
+                    walls[k].force[d] = forces[4 * k + d];
+                  walls[k].normal_force = forces[4 * k + 3];
+                }
             }
           for (auto &wall : walls)
             wall.advance(dt);
