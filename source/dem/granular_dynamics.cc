@@ -10,6 +10,7 @@
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace softsand
 {
@@ -52,6 +53,70 @@ namespace softsand
         std::ostringstream s;
         s << v;
         return s.str();
+      }
+
+      /**
+       * Contact histories of grains that changed rank. Grain-wall contacts
+       * are evaluated only by the grain's owner, and a pair by the owners of
+       * its grains: when a grain moves to another rank (or the mesh is
+       * repartitioned), its new owner may not have evaluated its contacts
+       * before. Each rank publishes the histories of the contacts of the
+       * grains that have @p left it, and takes from what the others
+       * published those it has none of. Collective; only the grains that
+       * changed rank cost communication.
+       */
+      void
+      hand_over_histories(
+        const MPI_Comm                                      comm,
+        const std::unordered_set<types::particle_index>    &left,
+        std::unordered_map<std::uint64_t, ContactHistory> &pair_histories,
+        std::unordered_map<std::uint64_t, ContactHistory> &wall_histories)
+      {
+        // Records of 11 numbers: kind (0 pair, 1 wall), the two halves of
+        // the key (grain ids, or grain id and wall), the history.
+        constexpr unsigned int size = 11;
+        std::vector<double>    published;
+        const auto publish = [&](const double          kind,
+                                 const std::uint64_t   key,
+                                 const ContactHistory &h) {
+          published.insert(published.end(),
+                           {kind,
+                            double(key >> 32),
+                            double(key & 0xffffffffu),
+                            h.shear[0],
+                            h.shear[1],
+                            h.shear[2],
+                            h.rolling_torque[0],
+                            h.rolling_torque[1],
+                            h.rolling_torque[2],
+                            h.damping_potential,
+                            h.damping_force});
+        };
+        for (const auto &[key, h] : pair_histories)
+          if (left.count(key >> 32) > 0 || left.count(key & 0xffffffffu) > 0)
+            publish(0, key, h);
+        for (const auto &[key, h] : wall_histories)
+          if (left.count(key >> 32) > 0)
+            publish(1, key, h);
+
+        const auto all = Utilities::MPI::all_gather(comm, published);
+        const unsigned int me = Utilities::MPI::this_mpi_process(comm);
+        for (unsigned int rank = 0; rank < all.size(); ++rank)
+          if (rank != me)
+            for (std::size_t k = 0; k + size <= all[rank].size(); k += size)
+              {
+                const double      *r = &all[rank][k];
+                ContactHistory     h;
+                h.shear             = Tensor<1, 3>({r[3], r[4], r[5]});
+                h.rolling_torque    = Tensor<1, 3>({r[6], r[7], r[8]});
+                h.damping_potential = r[9];
+                h.damping_force     = r[10];
+                const std::uint64_t key =
+                  pair_key(static_cast<types::particle_index>(r[1]),
+                           static_cast<types::particle_index>(r[2]));
+                // A contact this rank evaluated itself keeps its history.
+                (r[0] == 0 ? pair_histories : wall_histories).emplace(key, h);
+              }
       }
     } // namespace
 
@@ -323,6 +388,10 @@ namespace softsand
                                              wall_pairs[k].second),
                                     wall_history[k]);
 
+      std::unordered_set<types::particle_index> left;
+      if (parallel)
+        left.insert(id.begin(), id.begin() + n_local);
+
       if (!x.empty())
         copy_to_particles();
       particle_handler.sort_particles_into_subdomains_and_cells();
@@ -332,6 +401,12 @@ namespace softsand
         particle_handler.exchange_ghost_particles(true);
       copy_from_particles();
       x_at_build = x;
+      if (parallel)
+        {
+          for (unsigned int i = 0; i < n_local; ++i)
+            left.erase(id[i]);
+          hand_over_histories(comm, left, old_pairs, old_wall_contacts);
+        }
       ++n_builds;
 
       // Linked cells of size 2 r_max + skin over local and ghost grains.
