@@ -13,7 +13,7 @@ The relative motion of two equal grains is that of one grain of mass m/2
 and radius R/2 on a wall, so one 1D model serves both impacts. Material of
 dem_impacts: Y = 5e6 Pa, nu = 0.15, 2500 kg/m^3, R = 0.05 mm, v = 0.1 m/s.
 
-  python3 scripts/restitution_onset_scan.py
+  python3 tests/tools/restitution_onset_scan.py
 """
 import math
 
