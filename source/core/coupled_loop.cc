@@ -141,10 +141,21 @@ namespace softsand
             dem = std::make_unique<dem::GranularDynamics>(*dem_triangulation,
                                                           p.dem,
                                                           domain);
-            dem->insert(initial, true);
-            dem->initialize();
+            // A restart reads the grains from the checkpoint instead; the
+            // scene's grains still fix the coarse mesh, as in the first run.
+            if (!sc.restart)
+              {
+                dem->insert(initial, true);
+                dem->initialize();
+              }
+            else
+              grains = initial;
           }
-          update_grains_from_dem();
+          if (!sc.restart)
+            update_grains_from_dem();
+          else
+            solid_field = std::make_unique<coupling::GrainSolidField<dim>>(
+              grains, p.void_fraction);
 
           fluid = std::make_unique<fluid::PenalizedNavierStokes<dim>>(
             triangulation,
@@ -214,7 +225,6 @@ namespace softsand
             previous_angular_velocity, previous_torque;
           std::vector<double> previous_resistance,
             previous_rotational_resistance;
-          unsigned int n_adaptations = 0;
           Timer        loop_clock;
           while (time < sc.end_time * (1 - 1e-12) && step < sc.max_time_steps)
             {
@@ -239,7 +249,7 @@ namespace softsand
                   cp.readapt_fraction * finest * (1 - 1e-12))
                 {
                   adapt_mesh_to_grains(true);
-                  ++n_adaptations;
+                  ++n_mesh_adaptations;
                 }
 
               // Fluid, with the grains where they are now.
@@ -304,7 +314,7 @@ namespace softsand
                                                    const double        old,
                                                    const double        low) {
                               double k = old;
-                              if (dv.norm() > 1e-3 * v.norm() && dv.norm() > 0 &&
+                              if (dv.norm() > 1e-2 * v.norm() && dv.norm() > 0 &&
                                   dF * dv < 0)
                                 k = -(dF * dv) / dv.norm_square();
                               return std::clamp(k, low, 1e4 * low);
@@ -343,10 +353,16 @@ namespace softsand
                       {
                         const double shell = std::max(
                           finest, std::sqrt(M_PI * mu / rho_f * dt));
+                        const double shell_mass = rho_f * M_PI * d * d * shell;
                         response[i] +=
-                          rho_f / dt *
-                          (cp.added_mass_coefficient * grains[g].measure() +
-                           M_PI * d * d * shell);
+                          (rho_f * cp.added_mass_coefficient *
+                             grains[g].measure() +
+                           shell_mass) /
+                          dt;
+                        // The shell turns with the grain: its moment of
+                        // inertia (2/3) m r^2.
+                        rotational[i] +=
+                          shell_mass * d * d / 6 / dt;
                       }
                   }
                 dem->set_fluid_forces(force, torque, response, rotational);
@@ -387,7 +403,7 @@ namespace softsand
               statistics->add_value("max_speed", s.max_speed);
               statistics->add_value("max_overlap_ratio", s.max_overlap);
               statistics->add_value("coordination", s.coordination);
-              statistics->add_value("mesh_adaptations", n_adaptations);
+              statistics->add_value("mesh_adaptations", n_mesh_adaptations);
               if (!grains.empty())
                 {
                   const char names[3] = {'x', 'y', 'z'};
@@ -431,7 +447,7 @@ namespace softsand
                                         final_grains);
             }
           last_results["coupled_steps"]    = step;
-          last_results["mesh_adaptations"] = n_adaptations;
+          last_results["mesh_adaptations"] = n_mesh_adaptations;
           if (!grains.empty())
             for (unsigned int d = 0; d < 3; ++d)
               {
@@ -468,8 +484,8 @@ namespace softsand
                 out << dem_state.str();
                 std::ofstream info(base + ".info.tmp");
                 info << std::setprecision(17) << step << ' ' << time << ' '
-                     << fluid->n_steps_done() << ' '
-                     << centers_at_adaptation.size() << '\n';
+                     << fluid->n_steps_done() << ' ' << n_mesh_adaptations
+                     << ' ' << centers_at_adaptation.size() << '\n';
                 // Where the mesh was last adapted: the restarted run must
                 // re-adapt when the uninterrupted one would.
                 for (const auto &c : centers_at_adaptation)
@@ -519,7 +535,8 @@ namespace softsand
                                  "first."));
           unsigned int step = 0, fluid_steps = 0, n_centers = 0;
           double       time = 0;
-          info >> step >> time >> fluid_steps >> n_centers;
+          info >> step >> time >> fluid_steps >> n_mesh_adaptations >>
+            n_centers;
           std::vector<Point<dim>> centers(n_centers);
           for (auto &c : centers)
             for (unsigned int d = 0; d < dim; ++d)

@@ -7,6 +7,7 @@
 #include <softsand/io/grain_file.h>
 #include <softsand/io/grain_output.h>
 #include <softsand/io/statistics_file.h>
+#include <softsand/io/wall_output.h>
 
 #include <cmath>
 #include <filesystem>
@@ -84,8 +85,16 @@ namespace softsand
       io::StatisticsFile statistics(p.output.directory + "/statistics.txt",
                                     mpi_communicator);
       std::unique_ptr<io::GrainOutput> output;
+      std::unique_ptr<io::WallOutput>  wall_output;
       if (p.output.write_vtu)
-        output = std::make_unique<io::GrainOutput>(p.output.directory, "grains");
+        {
+          output =
+            std::make_unique<io::GrainOutput>(p.output.directory, "grains");
+          if (!dem->get_walls().empty())
+            wall_output = std::make_unique<io::WallOutput>(p.output.directory,
+                                                           "walls",
+                                                           domain);
+        }
 
       dem::GranularStatistics s;
       const auto record = [&]() {
@@ -111,14 +120,16 @@ namespace softsand
                              dem->n_neighbor_list_builds());
         for (const auto &wall : dem->get_walls())
           {
+            const bool plane = (wall.shape == dem::Wall::Shape::plane);
+            // A cylinder's force vector cancels around the axis: its load
+            // is the sum of the normal contact forces.
             statistics.add_value(wall.name + "_force_normal",
-                                 -(wall.force * wall.normal));
-            if (wall.shape == dem::Wall::Shape::plane)
-              {
-                statistics.add_value(wall.name + "_pressure", wall.pressure());
-                statistics.add_value(wall.name + "_position",
-                                     wall.point * wall.normal);
-              }
+                                 plane ? -(wall.force * wall.normal) :
+                                         wall.normal_force);
+            statistics.add_value(wall.name + "_pressure", wall.pressure());
+            if (plane)
+              statistics.add_value(wall.name + "_position",
+                                   wall.point * wall.normal);
           }
         statistics.add_value("wall_time", wall_clock.wall_time());
         statistics.write_row();
@@ -126,6 +137,8 @@ namespace softsand
       const auto write_grains = [&]() {
         if (output)
           output->write(dem->particles(), dem->time(), mpi_communicator);
+        if (wall_output)
+          wall_output->write(dem->get_walls(), dem->time(), mpi_communicator);
       };
 
       if (!dp.save_initial_pack.empty() &&
@@ -226,8 +239,11 @@ namespace softsand
                       {"grain_steps_per_second",
                        dem->step_number() * double(s.n_grains) / loop_time}};
       for (const auto &wall : dem->get_walls())
-        if (wall.shape == dem::Wall::Shape::plane)
+        {
           last_results[wall.name + "_pressure"] = wall.pressure();
+          if (wall.shape == dem::Wall::Shape::plane)
+            last_results[wall.name + "_position"] = wall.point * wall.normal;
+        }
 
       progress << "softsand granular: " << dem->step_number() << " steps in "
                << elapsed << " s: "

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace softsand
 {
@@ -53,6 +54,70 @@ namespace softsand
         std::ostringstream s;
         s << v;
         return s.str();
+      }
+
+      /**
+       * Contact histories of grains that changed rank. Grain-wall contacts
+       * are evaluated only by the grain's owner, and a pair by the owners of
+       * its grains: when a grain moves to another rank (or the mesh is
+       * repartitioned), its new owner may not have evaluated its contacts
+       * before. Each rank publishes the histories of the contacts of the
+       * grains that have @p left it, and takes from what the others
+       * published those it has none of. Collective; only the grains that
+       * changed rank cost communication.
+       */
+      void
+      hand_over_histories(
+        const MPI_Comm                                      comm,
+        const std::unordered_set<types::particle_index>    &left,
+        std::unordered_map<std::uint64_t, ContactHistory> &pair_histories,
+        std::unordered_map<std::uint64_t, ContactHistory> &wall_histories)
+      {
+        // Records of 11 numbers: kind (0 pair, 1 wall), the two halves of
+        // the key (grain ids, or grain id and wall), the history.
+        constexpr unsigned int size = 11;
+        std::vector<double>    published;
+        const auto publish = [&](const double          kind,
+                                 const std::uint64_t   key,
+                                 const ContactHistory &h) {
+          published.insert(published.end(),
+                           {kind,
+                            double(key >> 32),
+                            double(key & 0xffffffffu),
+                            h.shear[0],
+                            h.shear[1],
+                            h.shear[2],
+                            h.rolling_torque[0],
+                            h.rolling_torque[1],
+                            h.rolling_torque[2],
+                            h.damping_potential,
+                            h.damping_force});
+        };
+        for (const auto &[key, h] : pair_histories)
+          if (left.count(key >> 32) > 0 || left.count(key & 0xffffffffu) > 0)
+            publish(0, key, h);
+        for (const auto &[key, h] : wall_histories)
+          if (left.count(key >> 32) > 0)
+            publish(1, key, h);
+
+        const auto all = Utilities::MPI::all_gather(comm, published);
+        const unsigned int me = Utilities::MPI::this_mpi_process(comm);
+        for (unsigned int rank = 0; rank < all.size(); ++rank)
+          if (rank != me)
+            for (std::size_t k = 0; k + size <= all[rank].size(); k += size)
+              {
+                const double      *r = &all[rank][k];
+                ContactHistory     h;
+                h.shear             = Tensor<1, 3>({r[3], r[4], r[5]});
+                h.rolling_torque    = Tensor<1, 3>({r[6], r[7], r[8]});
+                h.damping_potential = r[9];
+                h.damping_force     = r[10];
+                const std::uint64_t key =
+                  pair_key(static_cast<types::particle_index>(r[1]),
+                           static_cast<types::particle_index>(r[2]));
+                // A contact this rank evaluated itself keeps its history.
+                (r[0] == 0 ? pair_histories : wall_histories).emplace(key, h);
+              }
       }
     } // namespace
 
@@ -348,7 +413,8 @@ namespace softsand
       old_pairs.reserve(pairs.size());
       for (unsigned int k = 0; k < pairs.size(); ++k)
         if (pair_history[k].shear.norm_square() > 0 ||
-            pair_history[k].rolling_torque.norm_square() > 0)
+            pair_history[k].rolling_torque.norm_square() > 0 ||
+            pair_history[k].damping_potential > 0)
           old_pairs.emplace(pair_key(id[pairs[k].first], id[pairs[k].second]),
                             pair_history[k]);
       old_pairs.merge(restored_pairs);
@@ -358,10 +424,15 @@ namespace softsand
       restored_wall_contacts.clear();
       for (unsigned int k = 0; k < wall_pairs.size(); ++k)
         if (wall_history[k].shear.norm_square() > 0 ||
-            wall_history[k].rolling_torque.norm_square() > 0)
+            wall_history[k].rolling_torque.norm_square() > 0 ||
+            wall_history[k].damping_potential > 0)
           old_wall_contacts.emplace(pair_key(id[wall_pairs[k].first],
                                              wall_pairs[k].second),
                                     wall_history[k]);
+
+      std::unordered_set<types::particle_index> left;
+      if (parallel)
+        left.insert(id.begin(), id.begin() + n_local);
 
       if (!x.empty())
         copy_to_particles();
@@ -372,6 +443,12 @@ namespace softsand
         particle_handler.exchange_ghost_particles(true);
       copy_from_particles();
       x_at_build = x;
+      if (parallel)
+        {
+          for (unsigned int i = 0; i < n_local; ++i)
+            left.erase(id[i]);
+          hand_over_histories(comm, left, old_pairs, old_wall_contacts);
+        }
       ++n_builds;
 
       // Linked cells of size 2 r_max + skin over local and ghost grains.
@@ -561,6 +638,7 @@ namespace softsand
     GranularDynamics::compute_forces()
     {
       const Tensor<1, 3> &g = parameters.gravity;
+      damping_kick.assign(n_local, Tensor<1, 3>());
       grain_stiffness.assign(x.size(), 0.);
       grain_damping.assign(x.size(), 0.);
       for (unsigned int i = 0; i < n_local; ++i)
@@ -585,6 +663,17 @@ namespace softsand
           ContactHistory    &h   = pair_history[k];
           if (d2 >= rs * rs)
             {
+              if (h.damping_potential > 0)
+                {
+                  // Opened during the step: its damping impulse since the
+                  // last step returns to zero.
+                  const Tensor<1, 3> kick =
+                    (law.separation_impulse(h, dt) / std::sqrt(d2)) * d;
+                  if (i < n_local)
+                    damping_kick[i] += kick;
+                  if (j < n_local)
+                    damping_kick[j] -= kick;
+                }
               h = ContactHistory();
               continue;
             }
@@ -604,10 +693,10 @@ namespace softsand
               const double s   = d2 - rj2 + ri2;
               area = M_PI * std::max(0., (4 * d2 * ri2 - s * s) / (4 * d2));
             }
-          double stiffness, damping;
+          double stiffness, damping, impulse;
           law.evaluate(n, delta, li, lj, r_eff, m_eff, v_rel, w[i] - w[j],
                        area, dt, h, force, torque_i, torque_j, stiffness,
-                       damping);
+                       damping, impulse);
           grain_stiffness[i] += stiffness;
           grain_stiffness[j] += stiffness;
           grain_damping[i] += damping;
@@ -616,18 +705,23 @@ namespace softsand
             {
               f[i] += force;
               t[i] += torque_i;
+              damping_kick[i] += impulse * n;
               ++n_contacts[i];
             }
           if (j < n_local)
             {
               f[j] -= force;
               t[j] += torque_j;
+              damping_kick[j] -= impulse * n;
               ++n_contacts[j];
             }
         }
 
       for (auto &wall : walls)
-        wall.force = 0;
+        {
+          wall.force        = 0;
+          wall.normal_force = 0;
+        }
       for (unsigned int k = 0; k < wall_pairs.size(); ++k)
         {
           const unsigned int i    = wall_pairs[k].first;
@@ -637,6 +731,8 @@ namespace softsand
           ContactHistory    &h     = wall_history[k];
           if (delta <= 0)
             {
+              if (h.damping_potential > 0)
+                damping_kick[i] += law.separation_impulse(h, dt) * n;
               h = ContactHistory();
               continue;
             }
@@ -645,15 +741,17 @@ namespace softsand
             v[i] - wall.velocity - cross_product_3d(li * w[i], n);
           const double area =
             cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
-          double stiffness, damping;
+          double stiffness, damping, impulse;
           law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, w[i],
                        area, dt, h, force, torque_i, torque_j, stiffness,
-                       damping);
+                       damping, impulse);
           grain_stiffness[i] += stiffness;
           grain_damping[i] += damping;
+          damping_kick[i] += impulse * n;
           f[i] += force;
           t[i] += torque_i;
           wall.force -= force;
+          wall.normal_force += force * n;
         }
 
       // Explicit stability: omega dt and c dt of the stiffest grain. Hertz
@@ -729,9 +827,11 @@ namespace softsand
       double       max_move2 = 0;
       // Kick, drift, then predict the end-of-step velocity with the old
       // force (v + dt/2 a_n): the damping and the tangential spring then see
-      // a second-order velocity instead of the half-step one, which keeps
-      // the restitution of strongly damped contacts accurate at 20% of the
-      // Rayleigh time; the final kick corrects with the new force.
+      // a second-order velocity instead of the half-step one; the final
+      // kick corrects with the new force, and puts the normal damping
+      // impulse of the step at Gamma(delta_new) - Gamma(delta_old) exactly
+      // (ContactLaw): restitution then stays within 0.7% of the input for
+      // e >= 0.1 at 0.2 T_R, wherever in a step a contact starts.
       for (unsigned int i = 0; i < n_local; ++i)
         {
           v[i] += (half * inv_mass[i]) * f[i];
@@ -767,7 +867,8 @@ namespace softsand
       compute_forces();
       for (unsigned int i = 0; i < n_local; ++i)
         {
-          v[i] += (half * inv_mass[i]) * (f[i] - f_old[i]);
+          v[i] += (half * inv_mass[i]) * (f[i] - f_old[i]) +
+                  inv_mass[i] * damping_kick[i];
           w[i] += (half * inv_inertia[i]) * (t[i] - t_old[i]);
         }
 
@@ -775,14 +876,20 @@ namespace softsand
         {
           if (parallel)
             {
-              std::vector<double> forces(3 * walls.size());
+              std::vector<double> forces(4 * walls.size());
               for (unsigned int k = 0; k < walls.size(); ++k)
-                for (unsigned int d = 0; d < 3; ++d)
-                  forces[3 * k + d] = walls[k].force[d];
+                {
+                  for (unsigned int d = 0; d < 3; ++d)
+                    forces[4 * k + d] = walls[k].force[d];
+                  forces[4 * k + 3] = walls[k].normal_force;
+                }
               Utilities::MPI::sum(forces, comm, forces);
               for (unsigned int k = 0; k < walls.size(); ++k)
-                for (unsigned int d = 0; d < 3; ++d)
-                  walls[k].force[d] = forces[3 * k + d];
+                {
+                  for (unsigned int d = 0; d < 3; ++d)
+                    walls[k].force[d] = forces[4 * k + d];
+                  walls[k].normal_force = forces[4 * k + 3];
+                }
             }
           for (auto &wall : walls)
             wall.advance(dt);
@@ -932,7 +1039,7 @@ namespace softsand
       }
 
       constexpr unsigned int grain_record = 1 + 3 + property::n_properties;
-      constexpr unsigned int history_record = 2 + 6;
+      constexpr unsigned int history_record = 2 + 8;
     } // namespace
 
 
@@ -971,7 +1078,8 @@ namespace softsand
                                   const double          a,
                                   const double          b,
                                   const ContactHistory &h) {
-        if (h.shear.norm_square() == 0 && h.rolling_torque.norm_square() == 0)
+        if (h.shear.norm_square() == 0 && h.rolling_torque.norm_square() == 0 &&
+            h.damping_potential == 0 && h.damping_force == 0)
           return;
         list.push_back(a);
         list.push_back(b);
@@ -979,6 +1087,8 @@ namespace softsand
           list.push_back(h.shear[d]);
         for (unsigned int d = 0; d < 3; ++d)
           list.push_back(h.rolling_torque[d]);
+        list.push_back(h.damping_potential);
+        list.push_back(h.damping_force);
       };
       // A pair across ranks is held by both with the same history: keep
       // the copy of the rank owning its first grain.
@@ -1087,6 +1197,8 @@ namespace softsand
                   h.shear[d]          = list[k + 2 + d];
                   h.rolling_torque[d] = list[k + 5 + d];
                 }
+              h.damping_potential = list[k + 8];
+              h.damping_force     = list[k + 9];
               target[pair_key(static_cast<types::particle_index>(list[k]),
                               static_cast<types::particle_index>(list[k + 1]))] = h;
             }

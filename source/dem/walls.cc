@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace softsand
@@ -224,6 +225,8 @@ namespace softsand
               w.radius = v[6];
               if (!(w.radius > 0))
                 bad("the cylinder radius must be > 0");
+              const auto [s_min, s_max] = cylinder_axis_range(w, domain);
+              w.area = 2 * M_PI * w.radius * std::max(s_max - s_min, 1e-300);
               walls.push_back(w);
               continue;
             }
@@ -256,6 +259,95 @@ namespace softsand
           walls.push_back(w);
         }
       return walls;
+    }
+
+
+    namespace
+    {
+      /// Sutherland-Hodgman: the part of the convex polygon @p polygon where
+      /// (x - point) * normal >= 0.
+      std::vector<Point<3>>
+      clip(const std::vector<Point<3>> &polygon,
+           const Point<3>              &point,
+           const Tensor<1, 3>          &normal)
+      {
+        std::vector<Point<3>> result;
+        const unsigned int    n = polygon.size();
+        for (unsigned int a = 0; a < n; ++a)
+          {
+            const Point<3> &p = polygon[a], &q = polygon[(a + 1) % n];
+            const double    sp = (p - point) * normal, sq = (q - point) * normal;
+            if (sp >= 0)
+              result.push_back(p);
+            if ((sp >= 0) != (sq >= 0))
+              result.push_back(p + (sp / (sp - sq)) * (q - p));
+          }
+        return result;
+      }
+    } // namespace
+
+
+    std::vector<Point<3>>
+    plane_wall_face(const std::vector<Wall> &walls,
+                    const unsigned int       k,
+                    const BoundingBox<3>    &domain)
+    {
+      const Wall &wall = walls[k];
+      Assert(wall.shape == Wall::Shape::plane, ExcInternalError());
+      const auto [lo, hi] = domain.get_boundary_points();
+      const Point<3>     centre = 0.5 * (lo + hi);
+      const double       size   = 2 * (hi - lo).norm();
+      const Tensor<1, 3> &n     = wall.normal;
+      // A square in the plane around the box centre's projection, larger
+      // than the box, then cut down.
+      Tensor<1, 3> e1;
+      e1[std::abs(n[0]) < 0.9 ? 0 : 1] = 1;
+      e1 -= (e1 * n) * n;
+      e1 /= e1.norm();
+      const Tensor<1, 3> e2 = cross_product_3d(n, e1);
+      const Point<3>     origin = centre - ((centre - wall.point) * n) * n;
+      std::vector<Point<3>> square = {origin + size * (-e1 - e2),
+                                      origin + size * (e1 - e2),
+                                      origin + size * (e1 + e2),
+                                      origin + size * (-e1 + e2)};
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          Tensor<1, 3> axis;
+          axis[d] = 1;
+          square  = clip(square, lo, axis);
+          square  = clip(square, hi, -axis);
+        }
+      std::vector<Point<3>> face = square;
+      for (unsigned int j = 0; j < walls.size() && face.size() >= 3; ++j)
+        if (j != k && walls[j].shape == Wall::Shape::plane)
+          face = clip(face, walls[j].point, walls[j].normal);
+      if (face.size() < 3)
+        face = square;
+      // Clipping through a vertex repeats it: drop repeats.
+      std::vector<Point<3>> distinct;
+      for (const auto &p : face)
+        if (distinct.empty() || p.distance(distinct.back()) > 1e-12 * size)
+          distinct.push_back(p);
+      while (distinct.size() > 1 &&
+             distinct.front().distance(distinct.back()) <= 1e-12 * size)
+        distinct.pop_back();
+      if (distinct.size() < 3)
+        distinct.clear();
+      return distinct;
+    }
+
+
+    std::pair<double, double>
+    cylinder_axis_range(const Wall &cylinder, const BoundingBox<3> &domain)
+    {
+      double s_min = std::numeric_limits<double>::max(), s_max = -s_min;
+      for (unsigned int v = 0; v < 8; ++v)
+        {
+          const double s = (domain.vertex(v) - cylinder.point) * cylinder.normal;
+          s_min          = std::min(s_min, s);
+          s_max          = std::max(s_max, s);
+        }
+      return {s_min, s_max};
     }
   } // namespace dem
 } // namespace softsand

@@ -332,8 +332,9 @@ namespace softsand
         BlockDynamicSparsityPattern dsp(relevant_partitioning);
         DoFTools::make_sparsity_pattern(
           dof_handler, coupling, dsp, constraints, false);
-        // Moving solids pin pressure nodes they enclose (p = 0): those rows
-        // need the diagonal that the pressure-pressure block lacks.
+        // Moving solids pin pressure nodes they enclose (p = 0) that this
+        // pattern saw free: those rows need the diagonal that the
+        // pressure-pressure block lacks.
         if (moving_solids)
           for (const auto i : owned)
             dsp.add(i, i);
@@ -354,6 +355,11 @@ namespace softsand
         BlockDynamicSparsityPattern dsp(relevant_partitioning);
         DoFTools::make_sparsity_pattern(
           dof_handler, coupling, dsp, constraints, false);
+        // Moving solids constrain velocity nodes that this pattern saw
+        // free: their rows get a diagonal entry.
+        if (moving_solids)
+          for (const auto i : owned)
+            dsp.add(i, i);
         SparsityTools::distribute_sparsity_pattern(dsp,
                                                    owned,
                                                    mpi_communicator,
@@ -815,9 +821,11 @@ namespace softsand
 
       AssertThrow(std::isfinite(x.l2_norm()),
                   ExcMessage("The fluid solution is not finite (NaN or Inf)."));
-      statistics.linear_iterations = control.last_step();
-      statistics.total_linear_iterations += control.last_step();
-      return control.last_step();
+      // A zero right-hand side (fluid and grains at rest) needs no solve.
+      const unsigned int iterations = rhs_norm > 0 ? control.last_step() : 0;
+      statistics.linear_iterations = iterations;
+      statistics.total_linear_iterations += iterations;
+      return iterations;
     }
 
 

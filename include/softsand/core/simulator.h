@@ -108,6 +108,7 @@ namespace softsand
       std::unique_ptr<dem::GranularDynamics>                   dem;
       std::vector<types::particle_index>                       grain_ids;
       std::vector<Point<dim>>                                  centers_at_adaptation;
+      unsigned int                                             n_mesh_adaptations = 0;
       coupling::GrainForces<dim>                               grain_forces;
       coupling::GrainForces<dim>                               grain_forces_eq7;
     };

@@ -255,6 +255,9 @@ namespace softsand
       /// Linear response of the held fluid force (see set_fluid_forces()).
       std::vector<double>                fluid_response, fluid_rotational_response;
       std::vector<Tensor<1, 3>>          v_reference, w_reference;
+      /// Normal damping impulses (N s) that the end-of-step kick adds
+      /// (ContactLaw::evaluate()), per local grain.
+      std::vector<Tensor<1, 3>>          damping_kick;
       std::vector<double>                radius, mass, inv_mass, inv_inertia;
       std::vector<unsigned int>          n_contacts;
       /// Sum of the contact stiffnesses and dampings on each grain.

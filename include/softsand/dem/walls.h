@@ -7,6 +7,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace softsand
@@ -58,12 +59,19 @@ namespace softsand
 
       /// Force that the grains exert on the wall in the last step (N).
       Tensor<1, 3> force;
+      /// Sum over the grains touching the wall of their normal contact
+      /// force on it (N, > 0 pushing): the load, also of a cylinder, whose
+      /// force vector cancels around the axis.
+      double       normal_force = 0;
 
-      /// Grains' pressure on a plane: force along -normal over its area.
+      /// Grains' pressure on the wall (Pa): on a plane the force along
+      /// -normal over its area, on a cylinder the normal load over its
+      /// lateral area inside the domain box.
       double
       pressure() const
       {
-        return -(force * normal) / area;
+        return (shape == Shape::plane ? -(force * normal) : normal_force) /
+               area;
       }
 
       /// Overlap of a sphere (centre @p x, radius @p r) with the wall and
@@ -111,6 +119,27 @@ namespace softsand
     /// Build the walls of a scene in the box @p domain.
     std::vector<Wall>
     create_walls(const WallParameters &parameters, const BoundingBox<3> &domain);
+
+    /**
+     * The face of plane wall @p k as drawn for output: the convex polygon
+     * of the plane inside the box @p domain and on the grains' side of
+     * every other plane wall (so a box's faces are its rectangles and an
+     * octagon's pistons their sides between the neighbouring pistons and
+     * the plates, following the walls as they move). If the other walls
+     * cut the plane away entirely, the face is clipped by the box alone.
+     * Vertices in order around the polygon; empty if the plane misses the
+     * box.
+     */
+    std::vector<Point<3>>
+    plane_wall_face(const std::vector<Wall> &walls,
+                    const unsigned int       k,
+                    const BoundingBox<3>    &domain);
+
+    /// Range [s_min, s_max] of the axis coordinate (x - point) * axis of a
+    /// cylinder wall over the box @p domain: the stretch drawn for output,
+    /// and over which its lateral area is taken.
+    std::pair<double, double>
+    cylinder_axis_range(const Wall &cylinder, const BoundingBox<3> &domain);
   } // namespace dem
 } // namespace softsand
 
