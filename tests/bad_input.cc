@@ -2,7 +2,9 @@
 // is allowed: unknown entries, wrong types, out-of-range values, missing
 // files, overlapping grains, grains outside the domain, radius <= 0; and
 // for granular scenes also a time step above the Rayleigh limit, servo walls
-// without a target and malformed walls or size distributions.
+// without a target and malformed walls or size distributions; for coupled
+// scenes a restart without checkpoint, a zero re-adaptation distance and
+// DEM sub-steps longer than the stable DEM step.
 
 #include <deal.II/base/mpi.h>
 
@@ -113,6 +115,22 @@ main(int argc, char **argv)
                  " set size distribution = discrete\n"
                  " set discrete diameters = 1e-4, 2e-4\n"
                  " set discrete fractions = 1\nend\n");
+  // Coupled (CFD-DEM) scenes: a sphere in a 2 mm box.
+  const std::string coupled =
+    "subsection simulation control\n set mode = coupled\n"
+    " set time step = 1e-3\n set end time = 1e-3\n";
+  const std::string coupled_rest =
+    "end\nsubsection mesh\n set lower corner = -1e-3, -1e-3, -1e-3\n"
+    " set upper corner = 1e-3, 1e-3, 1e-3\n set cells per diameter = 2\nend\n"
+    "subsection grains\n set source = list\n set list = 0, 0, 0, 2.5e-4\nend\n";
+  check("coupled: restart without a checkpoint",
+        coupled + " set restart = true\n" + coupled_rest);
+  check("coupled: readapt fraction 0",
+        coupled + coupled_rest +
+          "subsection coupling\n set readapt fraction = 0\nend\n");
+  check("coupled: DEM sub-steps above the stable step",
+        coupled + coupled_rest +
+          "subsection coupling\n set dem substeps = 1\nend\n");
   try
     {
       softsand::core::run_parameter_file("no_such_file.prm", MPI_COMM_WORLD);

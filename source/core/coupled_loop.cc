@@ -373,18 +373,21 @@ namespace softsand
                 const unsigned long steps_before = dem->step_number();
                 if (cp.dem_substeps > 0)
                   {
-                    for (unsigned int k = 0; k < cp.dem_substeps; ++k)
-                      dem->step(dt / cp.dem_substeps);
-                    AssertThrow(dem->step_number() - steps_before ==
-                                  cp.dem_substeps,
+                    const double h = dt / cp.dem_substeps;
+                    AssertThrow(h <= dem->time_step() * (1 + 1e-9),
                                 ExcMessage(
                                   "coupling/dem substeps = " +
                                   std::to_string(cp.dem_substeps) +
                                   " gives DEM steps of " +
-                                  Utilities::to_string(dt / cp.dem_substeps) +
+                                  Utilities::to_string(h) +
                                   " s, above the stable DEM step " +
                                   Utilities::to_string(dem->time_step()) +
-                                  " s: raise it or set it to 0 (automatic)."));
+                                  " s: raise it to at least " +
+                                  std::to_string(static_cast<unsigned int>(
+                                    std::ceil(dt / dem->time_step()))) +
+                                  " or set it to 0 (automatic)."));
+                    for (unsigned int k = 0; k < cp.dem_substeps; ++k)
+                      dem->step(h);
                   }
                 else
                   dem->advance_to(time + dt);

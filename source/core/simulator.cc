@@ -293,6 +293,10 @@ namespace softsand
       const Tensor<1, dim> traction =
         postprocess::boundary_traction(dof, u, mu);
       r["boundary_force_" + std::string(1, names[axis])] = traction[axis];
+      // The discrete momentum balance: fluid force on grains + on the box
+      // faces + body force = 0 (steady), relative to the larger force.
+      const Tensor<1, dim> reaction = fluid->boundary_force();
+      r["boundary_reaction_" + std::string(1, names[axis])] = reaction[axis];
 
       // Drag coefficient and Stokes ratio of the first grain.
       double U = p.postprocessing.reference_velocity;

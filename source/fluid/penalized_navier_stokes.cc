@@ -397,7 +397,8 @@ namespace softsand
     PenalizedNavierStokes<dim>::assemble(const Assembly      kind,
                                          const double        dt,
                                          const unsigned int  bdf_order,
-                                         const CellCallback *cell_callback)
+                                         const CellCallback *cell_callback,
+                                         const CellFilter   *cell_filter)
     {
       TimerOutput::Scope t(timer, "fluid: assemble");
       if (cell_callback == nullptr)
@@ -462,18 +463,8 @@ namespace softsand
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            if (cell_callback != nullptr)
-              {
-                // Reactions live on rigid nodes and on hanging nodes of
-                // rigid parents: skip the other cells.
-                cell->get_dof_indices(dof_indices);
-                bool any = false;
-                for (const auto i : dof_indices)
-                  any = any || rigid_dof_grain.count(i) ||
-                        hanging_rigid_parents.count(i);
-                if (!any)
-                  continue;
-              }
+            if (cell_filter != nullptr && !(*cell_filter)(cell))
+              continue;
             fe_values.reinit(cell);
             local_matrix  = 0;
             local_mass    = 0;
@@ -872,7 +863,75 @@ namespace softsand
                   add(k, rigid_dof_grain.at(parent), weight);
             }
         };
-      assemble(kind, dt, bdf_order, &reaction);
+      // Reactions live on rigid nodes and on hanging nodes of rigid
+      // parents: skip the other cells.
+      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+      const CellFilter has_rigid_nodes = [&](const auto &cell) {
+        cell->get_dof_indices(cell_dofs);
+        for (const auto i : cell_dofs)
+          if (rigid_dof_grain.count(i) || hanging_rigid_parents.count(i))
+            return true;
+        return false;
+      };
+      assemble(kind, dt, bdf_order, &reaction, &has_rigid_nodes);
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::compute_boundary_reaction(
+      const Assembly     kind,
+      const double       dt,
+      const unsigned int bdf_order)
+    {
+      using BC = BoundaryConditions<dim>;
+      const auto constrained_face = [&](const unsigned int id) {
+        return boundary_conditions.face(id).type != BC::Type::pressure;
+      };
+      Tensor<1, dim> force;
+      // Rows of velocity nodes on constrained faces: each cell adds its
+      // share of F - A u, the force of the fluid on those nodes (the sign
+      // of the grains' rigid-node reactions).
+      std::vector<bool> on_face(fe.n_dofs_per_cell());
+      const CellFilter touches_constrained_face = [&](const auto &cell) {
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              constrained_face(cell->face(f)->boundary_id()))
+            return true;
+        return false;
+      };
+      Vector<double> local_solution(fe.n_dofs_per_cell());
+      const CellCallback residual =
+        [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
+            const FullMatrix<double>                             &matrix,
+            const Vector<double>                                 &rhs,
+            const std::vector<types::global_dof_index> &) {
+          std::fill(on_face.begin(), on_face.end(), false);
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                constrained_face(cell->face(f)->boundary_id()))
+              for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
+                on_face[fe.face_to_cell_index(k, f)] = true;
+          cell->get_dof_values(solution, local_solution);
+          for (unsigned int k = 0; k < on_face.size(); ++k)
+            {
+              const unsigned int c = fe.system_to_component_index(k).first;
+              if (!on_face[k] || c == dim)
+                continue;
+              double r = rhs(k);
+              for (unsigned int j = 0; j < on_face.size(); ++j)
+                r -= matrix(k, j) * local_solution(j);
+              force[c] += r;
+            }
+        };
+      assemble(kind, dt, bdf_order, &residual, &touches_constrained_face);
+      // Pressure faces: the fluid pushes with p_b on the outward normal.
+      for (unsigned int id = 0; id < BC::n_faces; ++id)
+        if (!constrained_face(id))
+          force[id / 2] += (id % 2 == 0 ? -1. : 1.) *
+                           boundary_conditions.face(id).pressure *
+                           boundary_conditions.face_area(id);
+      last_boundary_force = Utilities::MPI::sum(force, mpi_communicator);
     }
 
 
@@ -888,6 +947,7 @@ namespace softsand
       solve_linear(false);
       statistics.nonlinear_iterations = 1;
       compute_rigid_reactions(Assembly::steady_stokes, dt, 1);
+      compute_boundary_reaction(Assembly::steady_stokes, dt, 1);
     }
 
 
@@ -929,6 +989,7 @@ namespace softsand
             {
               // The Picard operator at the converged state: A(u) u - f.
               compute_rigid_reactions(Assembly::steady_picard, dt, 1);
+              compute_boundary_reaction(Assembly::steady_picard, dt, 1);
               return;
             }
         }
@@ -976,6 +1037,7 @@ namespace softsand
       solve_linear(true);
       statistics.nonlinear_iterations = 1;
       compute_rigid_reactions(Assembly::transient, dt, order);
+      compute_boundary_reaction(Assembly::transient, dt, order);
 
       BlockVector change(owned_partitioning, mpi_communicator), u(change);
       change = solution;

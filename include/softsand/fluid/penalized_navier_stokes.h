@@ -140,6 +140,19 @@ namespace softsand
       void
       advance(const double time_step, const unsigned int bdf_order);
 
+      /**
+       * Force of the fluid on the box faces after a solve (summed over
+       * ranks): the discrete reaction of the velocity-constrained faces
+       * plus the prescribed pressure on pressure faces. With the grains'
+       * reaction forces and the body force it closes the momentum balance
+       * to the solver tolerance.
+       */
+      Tensor<1, dim>
+      boundary_force() const
+      {
+        return last_boundary_force;
+      }
+
       /// ||u^{n+1} - u^n|| / ||u^{n+1}|| of the last step.
       double
       relative_velocity_change() const;
@@ -224,13 +237,27 @@ namespace softsand
                            const Vector<double> &,
                            const std::vector<types::global_dof_index> &)>;
 
-      /// Assemble the system; with @p cell_callback, hand each cell's
-      /// local system to it instead (for discrete reactions).
+      /// Which cells a callback assembly visits.
+      using CellFilter = std::function<bool(
+        const typename DoFHandler<dim>::active_cell_iterator &)>;
+
+      /// Assemble the system; with @p cell_callback, hand the local system
+      /// of each cell that @p cell_filter accepts to it instead (for
+      /// discrete reactions).
       void
       assemble(const Assembly      kind,
                const double        time_step,
                const unsigned int  bdf_order,
-               const CellCallback *cell_callback = nullptr);
+               const CellCallback *cell_callback = nullptr,
+               const CellFilter   *cell_filter   = nullptr);
+      /// The force of the fluid on the velocity-constrained boundary faces:
+      /// the residual F - A u of their rows, the exact discrete
+      /// reaction (hanging boundary nodes included: their parents lie on
+      /// the same faces).
+      void
+      compute_boundary_reaction(const Assembly     kind,
+                                const double       time_step,
+                                const unsigned int bdf_order);
       /// Rigid-node model: the force of the fluid on each constrained node,
       /// F - A u of its row (the exact discrete reaction), after a solve.
       void
@@ -314,6 +341,7 @@ namespace softsand
         hanging_rigid_parents;
       std::vector<std::tuple<int, Point<dim>, Tensor<1, dim>>> rigid_reactions;
       double                           last_change = 0;
+      Tensor<1, dim>                   last_boundary_force;
     };
   } // namespace fluid
 } // namespace softsand
