@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""The paper's Fig. 5: Darcy permeability of compacted grain packs.
+
+  refinement: K of one pack against cells per diameter (Fig. 5a);
+  porosity:   K of packs poured and compacted by the DEM with different
+              grain sizes, friction and compaction pressure (Fig. 5b),
+              against Kozeny-Carman K = phi^3 d^2 / (180 (1 - phi)^2).
+
+Each pack: parameters/pour_and_compact.prm (granular mode; the piston's
+final position closes the box), then one steady Stokes-Brinkman solve of
+parameters/pack_permeability.prm on the pack (flow-rate inlet, pressure
+outlet, K = q mu L / dp between two planes). Porosity both ways: the
+paper's fraction of cells with vf > 0.9, and the exact void volume.
+
+  python3 scripts/study_pack_permeability.py refinement [--n 4,6,8]
+  python3 scripts/study_pack_permeability.py porosity [--n 6] [--packs 10]
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(__file__))
+import prm_tools  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SOFTSAND = os.path.join(ROOT, 'build', 'softsand')
+
+# (mean diameter m, friction, compaction pressure Pa, seed): ten packs of the
+# Fig. 3 box, 100 grains of +-10 % size.
+PACKS = [(1.0e-4, 0.7, 1e4, 3), (1.0e-4, 0.7, 1e3, 4), (1.0e-4, 0.7, 1e5, 5),
+         (1.0e-4, 0.3, 1e4, 6), (1.0e-4, 0.1, 1e4, 7), (1.0e-4, 0.0, 1e5, 8),
+         (0.9e-4, 0.7, 1e4, 9), (0.9e-4, 0.1, 1e4, 10), (1.1e-4, 0.7, 1e4, 11),
+         (1.1e-4, 0.3, 1e5, 12)]
+
+
+def kozeny_carman(phi, d):
+    return phi ** 3 * d * d / (180 * (1 - phi) ** 2)
+
+
+def make_pack(workdir, d, friction, pressure, seed):
+    """Pour and compact a pack; returns (pack file, piston height)."""
+    name = 'pack_d%g_mu%g_p%g_s%d' % (d, friction, pressure, seed)
+    out = os.path.join(workdir, name)
+    text = open(os.path.join(ROOT, 'parameters', 'pour_and_compact.prm')).read()
+    for path, value in [('grains/min diameter', 0.9 * d), ('grains/max diameter', 1.1 * d),
+                        ('grains/seed', seed), ('mesh/upper corner', '1e-3, 2e-3, %g' % (1.1 * d)),
+                        ('grains/region upper corner', '1e-3, 1.9e-3, %g' % (1.1 * d)),
+                        ('dem/material/friction', friction),
+                        ('dem/walls/servo pressure', pressure),
+                        ('output/directory', out), ('output/write vtu', 'false'),
+                        ('output/verbosity', 'quiet')]:
+        text = prm_tools.set_entry(text, path, value)
+    prm = os.path.join(workdir, name + '.prm')
+    os.makedirs(workdir, exist_ok=True)
+    open(prm, 'w').write(text)
+    log = subprocess.run([SOFTSAND, prm], capture_output=True, text=True, check=True).stdout
+    height = -float(re.search(r'wall_0_position\s+(\S+)', log).group(1))
+    return os.path.join(out, 'pack.txt'), height, 1.1 * d
+
+
+def permeability(workdir, name, pack, height, thickness, n, d):
+    text = open(os.path.join(ROOT, 'parameters', 'pack_permeability.prm')).read()
+    q = 1e-3  # superficial velocity (m/s)
+    row, wall, err = prm_tools.run(
+        SOFTSAND, text, workdir, name, 1,
+        [('grains/file', pack), ('mesh/upper corner', '1e-3, %.9g, %.9g' % (height, thickness)),
+         ('mesh/cells per diameter', n),
+         ('boundary conditions/x min/flow rate', '%.9g' % (q * height * thickness))])
+    if row is None:
+        return None, wall, err
+    return row, wall, None
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('study', choices=['refinement', 'porosity'])
+    ap.add_argument('--n', default=None)
+    ap.add_argument('--packs', type=int, default=10)
+    ap.add_argument('--workdir', default=os.path.join(ROOT, 'output/study_pack_permeability'))
+    a = ap.parse_args()
+    print('| pack (d, friction, p) | N | cells | DoFs | FGMRES | wall (s) | K (m^2) | '
+          'porosity cells | porosity volume | K/K_KC (cells) | K/K_KC (volume) |')
+    print('|---|---|---|---|---|---|---|---|---|---|---|')
+    if a.study == 'refinement':
+        packs = PACKS[:1]
+        ns = (a.n or '4,6,8').split(',')
+    else:
+        packs = PACKS[:a.packs]
+        ns = (a.n or '6').split(',')
+    for d, friction, pressure, seed in packs:
+        pack, height, thickness = make_pack(a.workdir, d, friction, pressure, seed)
+        for n in ns:
+            name = 'K_d%g_mu%g_p%g_N%s' % (d, friction, pressure, n)
+            row, wall, err = permeability(a.workdir, name, pack, height, thickness, n, d)
+            label = '%g mm, %g, %g kPa' % (d * 1e3, friction, pressure / 1e3)
+            if row is None:
+                print('| %s | %s | failed: %s |' % (label, n, err), flush=True)
+                continue
+            k = row['permeability']
+            pc, pv = row['porosity_cells'], row['porosity_integral']
+            print('| %s | %s | %d | %d | %d | %.0f | %.3e | %.3f | %.3f | %.2f | %.2f |'
+                  % (label, n, row['cells'], row['dofs'], row['linear_iterations'], wall, k,
+                     pc, pv, k / kozeny_carman(pc, d), k / kozeny_carman(pv, d)), flush=True)
+
+
+if __name__ == '__main__':
+    main()
