@@ -309,6 +309,11 @@ namespace softsand
       const double rho = fluid_parameters.density;
       const double mu  = fluid_parameters.viscosity;
       const SolverParameters::Schur schur = solver_parameters.schur;
+      // Grad-div: gamma (div v, div u) penalizes the discrete divergence, so
+      // that the Schur complement of the convective block approaches
+      // -(mu + gamma)^-1 M_p (step-57); without it the mass approximation
+      // misses convection and FGMRES stalls at Re ~ 50.
+      const double grad_div = solver_parameters.grad_div;
 
       // The pressure-Laplacian coefficient 1/beta is capped where beta -> 0
       // (steady pure fluid) by the viscous scale mu / L^2 of the domain.
@@ -505,9 +510,9 @@ namespace softsand
                   f += rho * (grad_w * w); // rho (u_k . grad) u_k
 
                 // Schur complement approximation coefficients (per point).
-                double mass_weight = free_fraction / mu;
+                double mass_weight = free_fraction / (mu + grad_div);
                 if (schur == SolverParameters::Schur::weighted_mass)
-                  mass_weight = free_fraction / (mu + beta * h * h);
+                  mass_weight = free_fraction / (mu + grad_div + beta * h * h);
                 const double laplace_weight =
                   (schur == SolverParameters::Schur::cahouet_chabard) ?
                     1. / (beta + beta_floor) :
@@ -559,6 +564,8 @@ namespace softsand
                           }
                         else if (newton)
                           a = advect_i * grad_w[ci][cj] * shape_value[j];
+                        if (cj < dim)
+                          a += grad_div * shape_grad[i][ci] * shape_grad[j][cj];
                         local_matrix(i, j) += a * JxW;
                       }
                     local_rhs(i) += (f[ci] + beta_rhs[ci]) * phi * JxW;
@@ -643,7 +650,11 @@ namespace softsand
           nullptr,
         constant_modes,
         convection,
-        solver_parameters.velocity_amg_sweeps);
+        solver_parameters.velocity_amg_sweeps,
+        solver_parameters.velocity_amg_smoother ==
+            SolverParameters::AmgSmoother::chebyshev ?
+          "Chebyshev" :
+          "symmetric Gauss-Seidel");
 
       BlockVector x(owned_partitioning, mpi_communicator);
       x = solution; // start from the previous state: cheap re-solves
