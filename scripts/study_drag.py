@@ -8,8 +8,9 @@ F(L) = F_inf + a d/L from the two largest boxes. Prints a markdown table.
                                 [--grad-div auto] [--smoother auto]
 
 Re > 0.1 runs steady Navier-Stokes (Newton from a Stokes solve) with
-grad-div gamma = rho U d and the symmetric Gauss-Seidel AMG smoother
-('auto'), without which FGMRES does not converge at Re = 50 and 100.
+grad-div gamma = rho U d + rho |u| h per cell and the symmetric
+Gauss-Seidel AMG smoother ('auto'), without which FGMRES does not converge
+at Re = 50 and 100 (nor at Re = 10 in a 40 d box).
 """
 import argparse
 import math
@@ -42,6 +43,9 @@ def main():
     ap.add_argument('--grad-div', default='auto',
                     help="gamma in Pa s, or 'auto': rho U d for Navier-Stokes "
                     "runs, 0 for Stokes")
+    ap.add_argument('--grad-div-cell-factor', default='auto',
+                    help="c in gamma = grad div + c rho |u| h; 'auto': 1 for "
+                    "Navier-Stokes runs, 0 for Stokes")
     ap.add_argument('--smoother', default='auto',
                     help="velocity AMG smoother; 'auto': symmetric gauss "
                     "seidel for Navier-Stokes runs, chebyshev for Stokes")
@@ -65,6 +69,9 @@ def main():
                 stokes = re <= 0.1
                 gamma = ('0' if stokes else '%g' % (rho * U * d)) \
                     if a.grad_div == 'auto' else a.grad_div
+                cell_factor = ('0' if stokes else '1') \
+                    if a.grad_div_cell_factor == 'auto' \
+                    else a.grad_div_cell_factor
                 smoother = ('chebyshev' if stokes else
                             'symmetric gauss seidel') \
                     if a.smoother == 'auto' else a.smoother
@@ -75,6 +82,7 @@ def main():
                       ('fluid/theta', a.theta),
                       ('fluid/solid model', a.solid_model),
                       ('fluid solver/grad div', gamma),
+                      ('fluid solver/grad div cell factor', cell_factor),
                       ('fluid solver/velocity amg smoother', smoother),
                       ('simulation control/mode',
                        'steady stokes' if stokes else

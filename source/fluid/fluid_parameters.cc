@@ -142,9 +142,21 @@ namespace softsand
         "Grad-div coefficient gamma (Pa s): adds gamma (div v, div u) to "
         "the momentum equation (consistent: div u = 0 for the exact "
         "solution) and uses mu + gamma in the pressure-mass Schur "
-        "approximation (deal.II step-57). Steady flow at Re >~ 20 needs "
-        "it for FGMRES to converge: gamma ~ rho U d (Re mu) works for "
-        "the sphere at Re = 50 and 100; 0 = off.");
+        "approximation (deal.II step-57). Steady flow at Re >~ 10 needs "
+        "it for FGMRES to converge: gamma = rho U d (Re mu) with 'grad div "
+        "cell factor' = 1 for the sphere at Re = 10 to 100; 0 = off.");
+      prm.declare_entry(
+        "grad div cell factor",
+        "0",
+        Patterns::Double(0),
+        "Dimensionless factor c of a cell part of the grad-div coefficient: "
+        "gamma = 'grad div' + c rho |u| h at each point of a cell of edge "
+        "h, with u the advecting velocity. The Schur complement of the "
+        "convective block scales like (rho |u| h)^-1 M_p in cells with a "
+        "cell Reynolds number above 1, so coarse far-field cells need a "
+        "larger gamma than the grain's cells: with a fixed gamma = rho U d "
+        "FGMRES stalled in a 40 d box at Re = 10 and 50, c = 1 converges "
+        "(doc/validation.md). 0 = constant gamma.");
       prm.leave_subsection();
     }
 
@@ -169,6 +181,7 @@ namespace softsand
                                 AmgSmoother::chebyshev :
                                 AmgSmoother::symmetric_gauss_seidel;
       grad_div              = prm.get_double("grad div");
+      grad_div_cell_factor     = prm.get_double("grad div cell factor");
       if (!(grad_div >= 0) || !std::isfinite(grad_div))
         core::throw_invalid_parameter("fluid solver/grad div",
                                       prm.get("grad div"),

@@ -313,7 +313,12 @@ namespace softsand
       // that the Schur complement of the convective block approaches
       // -(mu + gamma)^-1 M_p (step-57); without it the mass approximation
       // misses convection and FGMRES stalls at Re ~ 50.
+      // In coarse cells at a high cell Reynolds number the Schur
+      // complement is ~ (rho |u| h)^-1 M_p: gamma grows there with the
+      // cell part c rho |w| h.
       const double grad_div = solver_parameters.grad_div;
+      const double grad_div_cell_factor =
+        solver_parameters.grad_div_cell_factor;
 
       // The pressure-Laplacian coefficient 1/beta is capped where beta -> 0
       // (steady pure fluid) by the viscous scale mu / L^2 of the domain.
@@ -509,10 +514,13 @@ namespace softsand
                 if (newton)
                   f += rho * (grad_w * w); // rho (u_k . grad) u_k
 
+                const double gamma =
+                  grad_div + grad_div_cell_factor * rho * w.norm() * h;
+
                 // Schur complement approximation coefficients (per point).
-                double mass_weight = free_fraction / (mu + grad_div);
+                double mass_weight = free_fraction / (mu + gamma);
                 if (schur == SolverParameters::Schur::weighted_mass)
-                  mass_weight = free_fraction / (mu + grad_div + beta * h * h);
+                  mass_weight = free_fraction / (mu + gamma + beta * h * h);
                 const double laplace_weight =
                   (schur == SolverParameters::Schur::cahouet_chabard) ?
                     1. / (beta + beta_floor) :
@@ -565,7 +573,7 @@ namespace softsand
                         else if (newton)
                           a = advect_i * grad_w[ci][cj] * shape_value[j];
                         if (cj < dim)
-                          a += grad_div * shape_grad[i][ci] * shape_grad[j][cj];
+                          a += gamma * shape_grad[i][ci] * shape_grad[j][cj];
                         local_matrix(i, j) += a * JxW;
                       }
                     local_rhs(i) += (f[ci] + beta_rhs[ci]) * phi * JxW;

@@ -80,6 +80,8 @@ namespace softsand
       /// Grad-div coefficient gamma (Pa s): gamma (div v, div u) in the
       /// momentum equation, and mu + gamma in the Schur approximation.
       double grad_div = 0;
+      /// Cell part of gamma: + factor rho |u| h (dimensionless factor).
+      double grad_div_cell_factor = 0;
 
       static void
       declare_parameters(ParameterHandler &prm);
