@@ -84,6 +84,8 @@ main(int argc, char **argv)
         "subsection grains\n set source = random\n set size distribution = "
         "uniform\n set min diameter = 2e-4\n set max diameter = 1e-4\nend\n");
   check("bad body force", "subsection fluid\n set body force = 1; x +\nend\n");
+  check("negative grad-div",
+        "subsection fluid solver\n set grad div = -0.05\nend\n");
 
   {
     std::ofstream pack("overlapping_pack.txt");

@@ -10,8 +10,10 @@ namespace softsand
       const TrilinosWrappers::BlockSparseMatrix *pressure_laplace_matrix,
       const std::vector<std::vector<bool>>      &velocity_constant_modes,
       const bool                                 convection,
-      const unsigned int                         amg_sweeps)
+      const unsigned int                         amg_sweeps,
+      const std::string                         &velocity_smoother)
       : system_matrix(system_matrix)
+      , velocity_smoother(velocity_smoother)
       , use_laplace(pressure_laplace_matrix != nullptr)
     {
       {
@@ -21,6 +23,7 @@ namespace softsand
         data.higher_order_elements = true;
         data.smoother_sweeps       = amg_sweeps;
         data.aggregation_threshold = 0.02;
+        data.smoother_type         = this->velocity_smoother.c_str();
         velocity_amg.initialize(system_matrix.block(0, 0), data);
       }
       pressure_mass_ilu.initialize(pressure_mass_matrix.block(1, 1));

@@ -1,6 +1,8 @@
 #include <softsand/core/parameter_tools.h>
 #include <softsand/fluid/fluid_parameters.h>
 
+#include <cmath>
+
 namespace softsand
 {
   namespace fluid
@@ -123,6 +125,38 @@ namespace softsand
                         "2",
                         Patterns::Integer(1, 10),
                         "Smoother sweeps of the velocity-block AMG.");
+      prm.declare_entry(
+        "velocity amg smoother",
+        "chebyshev",
+        Patterns::Selection("chebyshev|symmetric gauss seidel"),
+        "Smoother of the velocity-block AMG (ML). chebyshev assumes a "
+        "symmetric positive definite block (Stokes, time steps with "
+        "rho/dt dominating); symmetric gauss seidel also smooths the "
+        "nonsymmetric convection (Newton/Picard) block of steady flow at "
+        "cell Reynolds numbers above about 1 (doc/validation.md: drag at "
+        "Re = 50 and 100).");
+      prm.declare_entry(
+        "grad div",
+        "0",
+        Patterns::Double(0),
+        "Grad-div coefficient gamma (Pa s): adds gamma (div v, div u) to "
+        "the momentum equation (consistent: div u = 0 for the exact "
+        "solution) and uses mu + gamma in the pressure-mass Schur "
+        "approximation (deal.II step-57). Steady flow at Re >~ 10 needs "
+        "it for FGMRES to converge: gamma = rho U d (Re mu) with 'grad div "
+        "cell factor' = 1 for the sphere at Re = 10 to 100; 0 = off.");
+      prm.declare_entry(
+        "grad div cell factor",
+        "0",
+        Patterns::Double(0),
+        "Dimensionless factor c of a cell part of the grad-div coefficient: "
+        "gamma = 'grad div' + c rho |u| h at each point of a cell of edge "
+        "h, with u the advecting velocity. The Schur complement of the "
+        "convective block scales like (rho |u| h)^-1 M_p in cells with a "
+        "cell Reynolds number above 1, so coarse far-field cells need a "
+        "larger gamma than the grain's cells: with a fixed gamma = rho U d "
+        "FGMRES stalled in a 40 d box at Re = 10 and 50, c = 1 converges "
+        "(doc/validation.md). 0 = constant gamma.");
       prm.leave_subsection();
     }
 
@@ -143,6 +177,16 @@ namespace softsand
               s == "weighted mass"   ? Schur::weighted_mass :
                                        Schur::mass;
       velocity_amg_sweeps = prm.get_integer("velocity amg sweeps");
+      velocity_amg_smoother = prm.get("velocity amg smoother") == "chebyshev" ?
+                                AmgSmoother::chebyshev :
+                                AmgSmoother::symmetric_gauss_seidel;
+      grad_div              = prm.get_double("grad div");
+      grad_div_cell_factor     = prm.get_double("grad div cell factor");
+      if (!(grad_div >= 0) || !std::isfinite(grad_div))
+        core::throw_invalid_parameter("fluid solver/grad div",
+                                      prm.get("grad div"),
+                                      "gamma must be a finite value >= 0 "
+                                      "Pa s");
       prm.leave_subsection();
     }
   } // namespace fluid

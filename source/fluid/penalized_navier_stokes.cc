@@ -412,6 +412,16 @@ namespace softsand
       const double rho = fluid_parameters.density;
       const double mu  = fluid_parameters.viscosity;
       const SolverParameters::Schur schur = solver_parameters.schur;
+      // Grad-div: gamma (div v, div u) penalizes the discrete divergence, so
+      // that the Schur complement of the convective block approaches
+      // -(mu + gamma)^-1 M_p (step-57); without it the mass approximation
+      // misses convection and FGMRES stalls at Re ~ 50.
+      // In coarse cells at a high cell Reynolds number the Schur
+      // complement is ~ (rho |u| h)^-1 M_p: gamma grows there with the
+      // cell part c rho |w| h.
+      const double grad_div = solver_parameters.grad_div;
+      const double grad_div_cell_factor =
+        solver_parameters.grad_div_cell_factor;
 
       // The pressure-Laplacian coefficient 1/beta is capped where beta -> 0
       // (steady pure fluid) by the viscous scale mu / L^2 of the domain.
@@ -597,10 +607,13 @@ namespace softsand
                 if (newton)
                   f += rho * (grad_w * w); // rho (u_k . grad) u_k
 
+                const double gamma =
+                  grad_div + grad_div_cell_factor * rho * w.norm() * h;
+
                 // Schur complement approximation coefficients (per point).
-                double mass_weight = free_fraction / mu;
+                double mass_weight = free_fraction / (mu + gamma);
                 if (schur == SolverParameters::Schur::weighted_mass)
-                  mass_weight = free_fraction / (mu + beta * h * h);
+                  mass_weight = free_fraction / (mu + gamma + beta * h * h);
                 const double laplace_weight =
                   (schur == SolverParameters::Schur::cahouet_chabard) ?
                     1. / (beta + beta_floor) :
@@ -652,6 +665,8 @@ namespace softsand
                           }
                         else if (newton)
                           a = advect_i * grad_w[ci][cj] * shape_value[j];
+                        if (cj < dim)
+                          a += gamma * shape_grad[i][ci] * shape_grad[j][cj];
                         local_matrix(i, j) += a * JxW;
                       }
                     local_rhs(i) += (f[ci] + beta_rhs[ci]) * phi * JxW;
@@ -736,7 +751,11 @@ namespace softsand
           nullptr,
         constant_modes,
         convection,
-        solver_parameters.velocity_amg_sweeps);
+        solver_parameters.velocity_amg_sweeps,
+        solver_parameters.velocity_amg_smoother ==
+            SolverParameters::AmgSmoother::chebyshev ?
+          "Chebyshev" :
+          "symmetric Gauss-Seidel");
 
       BlockVector x(owned_partitioning, mpi_communicator);
       x = solution; // start from the previous state: cheap re-solves

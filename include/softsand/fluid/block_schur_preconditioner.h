@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
 
+#include <string>
 #include <vector>
 
 namespace softsand
@@ -35,19 +36,25 @@ namespace softsand
     public:
       using BlockVector = TrilinosWrappers::MPI::BlockVector;
 
+      /// @p velocity_smoother is the ML smoother of the velocity AMG:
+      /// Chebyshev assumes a symmetric positive block; the convective
+      /// (Newton/Picard) block of steady flow needs "symmetric Gauss-Seidel".
       BlockSchurPreconditioner(
         const TrilinosWrappers::BlockSparseMatrix &system_matrix,
         const TrilinosWrappers::BlockSparseMatrix &pressure_mass_matrix,
         const TrilinosWrappers::BlockSparseMatrix *pressure_laplace_matrix,
         const std::vector<std::vector<bool>>      &velocity_constant_modes,
         const bool                                 convection,
-        const unsigned int                         amg_sweeps);
+        const unsigned int                         amg_sweeps,
+        const std::string &velocity_smoother = "Chebyshev");
 
       void
       vmult(BlockVector &dst, const BlockVector &src) const;
 
     private:
       const TrilinosWrappers::BlockSparseMatrix &system_matrix;
+      /// ML keeps a pointer to the smoother name: it must outlive the AMG.
+      const std::string                          velocity_smoother;
       TrilinosWrappers::PreconditionAMG          velocity_amg;
       TrilinosWrappers::PreconditionILU          pressure_mass_ilu;
       TrilinosWrappers::PreconditionAMG          pressure_laplace_amg;

@@ -70,6 +70,18 @@ namespace softsand
       unsigned int max_linear_iterations    = 1000;
       Schur        schur                    = Schur::cahouet_chabard;
       unsigned int velocity_amg_sweeps      = 2;
+      /// Smoother of the velocity-block AMG (an ML smoother type).
+      enum class AmgSmoother
+      {
+        chebyshev,
+        symmetric_gauss_seidel
+      };
+      AmgSmoother velocity_amg_smoother = AmgSmoother::chebyshev;
+      /// Grad-div coefficient gamma (Pa s): gamma (div v, div u) in the
+      /// momentum equation, and mu + gamma in the Schur approximation.
+      double grad_div = 0;
+      /// Cell part of gamma: + factor rho |u| h (dimensionless factor).
+      double grad_div_cell_factor = 0;
 
       static void
       declare_parameters(ParameterHandler &prm);
