@@ -122,7 +122,31 @@ namespace softsand
       prm.declare_entry("velocity amg sweeps",
                         "2",
                         Patterns::Integer(1, 10),
-                        "Smoother sweeps of the velocity-block AMG.");
+                        "linear solver = matrix based: smoother sweeps of the "
+                        "velocity-block AMG.");
+      prm.declare_entry(
+        "linear solver",
+        "matrix free",
+        Patterns::Selection("matrix free|matrix based"),
+        "matrix free: FGMRES on the matrix-free Q2-Q1 operator, velocity "
+        "block preconditioned by one geometric multigrid V-cycle (Q2, then "
+        "Q1 on the globally coarsened meshes); matrix based: Trilinos "
+        "matrices, velocity block by one ML AMG V-cycle. Both use the "
+        "Schur complement approximation below. Solves with convection "
+        "(Navier-Stokes, transient) are matrix based for now.");
+      prm.declare_entry("multigrid smoother degree",
+                        "4",
+                        Patterns::Integer(1, 20),
+                        "linear solver = matrix free: degree of the "
+                        "Chebyshev smoother (matrix-vector products per "
+                        "pre- or post-smoothing) on each multigrid level.");
+      prm.declare_entry("multigrid smoothing range",
+                        "20",
+                        Patterns::Double(1.01, 1000),
+                        "linear solver = matrix free: the Chebyshev smoother "
+                        "damps eigenvalues from lambda_max / range to "
+                        "lambda_max of the Jacobi-scaled level operator "
+                        "(dimensionless).");
       prm.leave_subsection();
     }
 
@@ -143,6 +167,11 @@ namespace softsand
               s == "weighted mass"   ? Schur::weighted_mass :
                                        Schur::mass;
       velocity_amg_sweeps = prm.get_integer("velocity amg sweeps");
+      linear_solver            = prm.get("linear solver") == "matrix free" ?
+                                   LinearSolver::matrix_free :
+                                   LinearSolver::matrix_based;
+      smoother_degree          = prm.get_integer("multigrid smoother degree");
+      smoothing_range          = prm.get_double("multigrid smoothing range");
       prm.leave_subsection();
     }
   } // namespace fluid
