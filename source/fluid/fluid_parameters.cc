@@ -124,7 +124,8 @@ namespace softsand
       prm.declare_entry("velocity amg sweeps",
                         "2",
                         Patterns::Integer(1, 10),
-                        "Smoother sweeps of the velocity-block AMG.");
+                        "linear solver = matrix based: smoother sweeps of the "
+                        "velocity-block AMG.");
       prm.declare_entry(
         "velocity amg smoother",
         "chebyshev",
@@ -157,6 +158,29 @@ namespace softsand
         "larger gamma than the grain's cells: with a fixed gamma = rho U d "
         "FGMRES stalled in a 40 d box at Re = 10 and 50, c = 1 converges "
         "(doc/validation.md). 0 = constant gamma.");
+      prm.declare_entry(
+        "linear solver",
+        "matrix free",
+        Patterns::Selection("matrix free|matrix based"),
+        "matrix free: FGMRES on the matrix-free Q2-Q1 operator, velocity "
+        "block preconditioned by one geometric multigrid V-cycle (Q2, then "
+        "Q1 on the globally coarsened meshes); matrix based: Trilinos "
+        "matrices, velocity block by one ML AMG V-cycle. Both use the "
+        "Schur complement approximation below. Solves with convection "
+        "(Navier-Stokes, transient) are matrix based for now.");
+      prm.declare_entry("multigrid smoother degree",
+                        "4",
+                        Patterns::Integer(1, 20),
+                        "linear solver = matrix free: degree of the "
+                        "Chebyshev smoother (matrix-vector products per "
+                        "pre- or post-smoothing) on each multigrid level.");
+      prm.declare_entry("multigrid smoothing range",
+                        "20",
+                        Patterns::Double(1.01, 1000),
+                        "linear solver = matrix free: the Chebyshev smoother "
+                        "damps eigenvalues from lambda_max / range to "
+                        "lambda_max of the Jacobi-scaled level operator "
+                        "(dimensionless).");
       prm.leave_subsection();
     }
 
@@ -187,6 +211,11 @@ namespace softsand
                                       prm.get("grad div"),
                                       "gamma must be a finite value >= 0 "
                                       "Pa s");
+      linear_solver            = prm.get("linear solver") == "matrix free" ?
+                                   LinearSolver::matrix_free :
+                                   LinearSolver::matrix_based;
+      smoother_degree          = prm.get_integer("multigrid smoother degree");
+      smoothing_range          = prm.get_double("multigrid smoothing range");
       prm.leave_subsection();
     }
   } // namespace fluid

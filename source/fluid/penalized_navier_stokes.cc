@@ -33,15 +33,19 @@ namespace softsand
       const BoundaryConditions<dim>             &boundary_conditions,
       ConditionalOStream                        &pcout,
       TimerOutput                               &timer)
-      : mpi_communicator(tria.get_communicator())
-      , triangulation(tria)
-      , fluid_parameters(fluid_parameters)
-      , solver_parameters(solver_parameters)
-      , boundary_conditions(boundary_conditions)
-      , pcout(pcout)
-      , timer(timer)
-      , fe(FE_Q<dim>(2), dim, FE_Q<dim>(1), 1)
-      , dof_handler(tria)
+        : mpi_communicator(tria.get_communicator())
+        , triangulation(tria)
+        , fluid_parameters(fluid_parameters)
+        , solver_parameters(solver_parameters)
+        , boundary_conditions(boundary_conditions)
+        , pcout(pcout)
+        , timer(timer)
+        , fe(FE_Q<dim>(2), dim, FE_Q<dim>(1), 1)
+        , dof_handler(tria)
+        , fe_velocity(FE_Q<dim>(2), dim)
+        , fe_pressure(1)
+        , dof_handler_velocity(tria)
+        , dof_handler_pressure(tria)
     {
       body_force = std::make_unique<FunctionParser<dim>>(dim);
       std::string expr = fluid_parameters.body_force;
@@ -193,60 +197,10 @@ namespace softsand
       hanging_rigid_parents.clear();
       if (with_solids && (rigid_nodes() || constrained_interiors()))
         {
-          // Theta -> infinity: nodes inside a grain move with it (rigid
-          // nodes: every node inside; penalization: the nodes of cells
-          // wholly inside one grain, so that the penalty stays in cut
-          // cells). Boundary and hanging-node constraints keep priority.
-          // Ghost cells are visited too, so that ranks agree on shared dofs.
-          const Quadrature<dim> nodes(fe.get_unit_support_points());
-          FEValues<dim> fe_values(fe, nodes, update_quadrature_points);
-          std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
-          std::vector<double>                  vf;
-          std::vector<Tensor<1, dim>>          u_s;
-          std::vector<int>                     grain;
-          // One offset for the whole mesh (grain surfaces sit in the finest
-          // cells): a per-cell spacing would let a coarse neighbour claim
-          // nodes that the fine cells sharing them leave free. Q2 nodes are
-          // half a cell edge apart.
-          double finest = std::numeric_limits<double>::max();
-          for (const auto &cell : dof_handler.active_cell_iterators())
-            if (cell->is_locally_owned())
-              finest = std::min(finest, cell->minimum_vertex_distance());
-          finest = Utilities::MPI::min(finest, mpi_communicator);
-          const double inflation =
-            rigid_nodes() ?
-              fluid_parameters.rigid_node_offset * finest / fe.degree :
-              0.;
-          for (const auto &cell : dof_handler.active_cell_iterators())
-            if (!cell->is_artificial())
-              {
-                fe_values.reinit(cell);
-                solid_field->evaluate_exact(*cell,
-                                            fe_values.get_quadrature_points(),
-                                            vf,
-                                            u_s,
-                                            grain,
-                                            inflation);
-                cell->get_dof_indices(dof_indices);
-                // A box whose nodes all lie in one sphere lies in it.
-                if (!rigid_nodes() &&
-                    !std::all_of(grain.begin(), grain.end(), [&](const int g) {
-                      return g >= 0 && g == grain[0];
-                    }))
-                  continue;
-                for (unsigned int k = 0; k < dof_indices.size(); ++k)
-                  {
-                    const unsigned int c = fe.system_to_component_index(k).first;
-                    const auto         i = dof_indices[k];
-                    if (c == dim || grain[k] < 0 || rigid_dof_grain.count(i) ||
-                        constraints.is_constrained(i) ||
-                        !constraints.can_store_line(i))
-                      continue;
-                    constraints.add_line(i);
-                    constraints.set_inhomogeneity(i, u_s[k][c]);
-                    rigid_dof_grain[i] = grain[k];
-                  }
-              }
+          add_solid_constraints(dof_handler,
+                                constraints,
+                                rigid_nodes() ? rigid_node_inflation() : 0.,
+                                &rigid_dof_grain);
 
           // Hanging nodes whose parents are rigid carry part of the grain's
           // reaction; close() below resolves those parents away, so keep
@@ -262,6 +216,8 @@ namespace softsand
           // Only locally active dofs: their cells are all owned or ghost.
           const IndexSet active = DoFTools::extract_locally_active_dofs(dof_handler);
           std::set<types::global_dof_index> free_pressure, solid_pressure;
+          std::vector<types::global_dof_index> dof_indices(
+            fe.n_dofs_per_cell());
           // Rigid, Dirichlet, or hanging on rigid parents only.
           const auto fixed_velocity = [&](const types::global_dof_index i) {
             if (rigid_dof_grain.count(i))
@@ -293,6 +249,80 @@ namespace softsand
               constraints.add_line(i);
         }
       constraints.close();
+    }
+
+
+    template <int dim>
+    double
+    PenalizedNavierStokes<dim>::rigid_node_inflation() const
+    {
+      // One offset for the whole mesh (grain surfaces sit in the finest
+      // cells): a per-cell spacing would let a coarse neighbour claim nodes
+      // that the fine cells sharing them leave free. Q2 nodes are half a
+      // cell edge apart.
+      double finest = std::numeric_limits<double>::max();
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          finest = std::min(finest, cell->minimum_vertex_distance());
+      finest = Utilities::MPI::min(finest, mpi_communicator);
+      return fluid_parameters.rigid_node_offset * finest / fe.degree;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::add_solid_constraints(
+      const DoFHandler<dim>                  &dof,
+      AffineConstraints<double>              &constraints,
+      const double                            inflation,
+      std::map<types::global_dof_index, int> *grain_of_dof) const
+    {
+      // Theta -> infinity: nodes inside a grain move with it (rigid nodes:
+      // every node inside; penalization: the nodes of cells wholly inside
+      // one grain, so that the penalty stays in cut cells). Boundary and
+      // hanging-node constraints keep priority. Ghost cells are visited too,
+      // so that ranks agree on shared dofs.
+      const FiniteElement<dim> &element = dof.get_fe();
+      const Quadrature<dim>     nodes(element.get_unit_support_points());
+      FEValues<dim> fe_values(element, nodes, update_quadrature_points);
+      std::vector<types::global_dof_index> dof_indices(
+        element.n_dofs_per_cell());
+      std::vector<double>         vf;
+      std::vector<Tensor<1, dim>> u_s;
+      std::vector<int>            grain;
+      for (const auto &cell : dof.active_cell_iterators())
+        if (!cell->is_artificial())
+          {
+            fe_values.reinit(cell);
+            solid_field->evaluate_exact(*cell,
+                                        fe_values.get_quadrature_points(),
+                                        vf,
+                                        u_s,
+                                        grain,
+                                        inflation);
+            cell->get_dof_indices(dof_indices);
+            // A box whose nodes all lie in one sphere lies in it.
+            if (!rigid_nodes() &&
+                !std::all_of(grain.begin(), grain.end(), [&](const int g) {
+                  return g >= 0 && g == grain[0];
+                }))
+              continue;
+            for (unsigned int k = 0; k < dof_indices.size(); ++k)
+              {
+                const unsigned int c =
+                  element.system_to_component_index(k).first;
+                const auto i = dof_indices[k];
+                if (c >= dim || grain[k] < 0 || constraints.is_constrained(i) ||
+                    !constraints.can_store_line(i))
+                  continue;
+                constraints.add_line(i);
+                if (grain_of_dof != nullptr)
+                  {
+                    constraints.set_inhomogeneity(i, u_s[k][c]);
+                    (*grain_of_dof)[i] = grain[k];
+                  }
+              }
+          }
     }
 
 
@@ -377,6 +407,9 @@ namespace softsand
       older_solution.reinit(solution);
       system_rhs.reinit(owned_partitioning, mpi_communicator);
       steps_since_start = 0;
+      if (solver_parameters.linear_solver ==
+          SolverParameters::LinearSolver::matrix_free)
+        setup_matrix_free_dofs();
     }
 
 
@@ -400,7 +433,9 @@ namespace softsand
                                          const CellCallback *cell_callback,
                                          const CellFilter   *cell_filter)
     {
-      TimerOutput::Scope t(timer, "fluid: assemble");
+      TimerOutput::Scope t(timer,
+                           cell_callback == nullptr ? "fluid: assemble" :
+                                                      "fluid: reactions");
       if (cell_callback == nullptr)
         {
           system_matrix           = 0;
@@ -962,8 +997,13 @@ namespace softsand
       last_time_step   = dt;
       last_was_steady  = true;
       make_constraints();
-      assemble(Assembly::steady_stokes, dt, 1);
-      solve_linear(false);
+      if (use_matrix_free(Assembly::steady_stokes))
+        solve_matrix_free(Assembly::steady_stokes, dt);
+      else
+        {
+          assemble(Assembly::steady_stokes, dt, 1);
+          solve_linear(false);
+        }
       statistics.nonlinear_iterations = 1;
       compute_rigid_reactions(Assembly::steady_stokes, dt, 1);
       compute_boundary_reaction(Assembly::steady_stokes, dt, 1);
@@ -979,8 +1019,13 @@ namespace softsand
       last_was_steady = true;
       make_constraints();
       // A Stokes solve gives the first iterate.
-      assemble(Assembly::steady_stokes, dt, 1);
-      solve_linear(false);
+      if (use_matrix_free(Assembly::steady_stokes))
+        solve_matrix_free(Assembly::steady_stokes, dt);
+      else
+        {
+          assemble(Assembly::steady_stokes, dt, 1);
+          solve_linear(false);
+        }
       const Assembly kind =
         solver_parameters.nonlinear_method == SolverParameters::Nonlinear::newton ?
           Assembly::steady_newton :

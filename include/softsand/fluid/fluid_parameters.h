@@ -63,6 +63,12 @@ namespace softsand
         weighted_mass,
         mass
       };
+      /// How the linear systems are stored and preconditioned.
+      enum class LinearSolver
+      {
+        matrix_based,
+        matrix_free
+      };
       Nonlinear    nonlinear_method         = Nonlinear::newton;
       double       nonlinear_tolerance      = 1e-8;
       unsigned int max_nonlinear_iterations = 30;
@@ -82,6 +88,10 @@ namespace softsand
       double grad_div = 0;
       /// Cell part of gamma: + factor rho |u| h (dimensionless factor).
       double grad_div_cell_factor = 0;
+      LinearSolver linear_solver            = LinearSolver::matrix_free;
+      /// Geometric multigrid of the matrix-free velocity block.
+      unsigned int smoother_degree = 4;
+      double       smoothing_range = 20;
 
       static void
       declare_parameters(ParameterHandler &prm);

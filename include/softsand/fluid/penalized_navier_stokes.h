@@ -11,6 +11,7 @@
 
 #include <deal.II/dofs/dof_handler.h>
 
+#include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
 
@@ -230,6 +231,41 @@ namespace softsand
       /// vectors, with hanging-node values restored.
       void
       set_solutions(const std::vector<BlockVector *> &values);
+      /**
+       * Constrain the velocity nodes of @p dof that move with a grain (rigid
+       * nodes: within radius + @p inflation; constrained interiors: the
+       * nodes of cells wholly inside one grain), unless already constrained.
+       * With @p grain_of_dof the constraint carries the grain's rigid
+       * velocity and the grain is recorded; without, it is homogeneous (the
+       * multigrid levels).
+       */
+      void
+      add_solid_constraints(
+        const DoFHandler<dim>                  &dof,
+        AffineConstraints<double>              &constraints,
+        const double                            inflation,
+        std::map<types::global_dof_index, int> *grain_of_dof) const;
+      /// Distance by which the rigid-node model grows the grains (m).
+      double
+      rigid_node_inflation() const;
+      /// The matrix-free path: velocity and pressure DoFHandlers numbered
+      /// like the blocks of the combined one.
+      void
+      setup_matrix_free_dofs();
+      /// Matrix-free assembly of the right-hand side and the Schur blocks,
+      /// then FGMRES with the multigrid block preconditioner.
+      unsigned int
+      solve_matrix_free(const Assembly kind, const double time_step);
+      bool
+      use_matrix_free(const Assembly kind) const
+      {
+        // The matrix-free operator has no grad-div term.
+        return solver_parameters.linear_solver ==
+                 SolverParameters::LinearSolver::matrix_free &&
+               kind == Assembly::steady_stokes &&
+               solver_parameters.grad_div == 0 &&
+               solver_parameters.grad_div_cell_factor == 0;
+      }
       /// Cell matrix, right-hand side and dof indices before constraints.
       using CellCallback =
         std::function<void(const typename DoFHandler<dim>::active_cell_iterator &,
@@ -310,6 +346,16 @@ namespace softsand
       AffineConstraints<double> constraints;
       std::vector<IndexSet>    owned_partitioning;
       std::vector<IndexSet>    relevant_partitioning;
+
+      /// Matrix-free path: separate velocity (Q2^dim) and pressure (Q1)
+      /// DoFHandlers whose indices equal the combined handler's block
+      /// indices, and the solver state (matrix_free_stokes.cc).
+      FESystem<dim>   fe_velocity;
+      FE_Q<dim>       fe_pressure;
+      DoFHandler<dim> dof_handler_velocity;
+      DoFHandler<dim> dof_handler_pressure;
+      struct MatrixFreeData;
+      std::shared_ptr<MatrixFreeData> matrix_free_data;
 
       TrilinosWrappers::BlockSparseMatrix system_matrix;
       /// Pressure blocks of the Schur complement approximation.

@@ -1,0 +1,605 @@
+// The matrix-free path of PenalizedNavierStokes: FGMRES on the Q2-Q1
+// operator applied cell by cell (sum factorization), the velocity block
+// preconditioned by one geometric multigrid V-cycle, the Schur complement by
+// the same Cahouet-Chabard approximation as the matrix-based path (its two
+// Q1 pressure matrices are small, so they stay assembled).
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+
+#include <deal.II/grid/grid_tools.h>
+
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <deal.II/matrix_free/fe_evaluation.h>
+
+#include <deal.II/numerics/vector_tools.h>
+
+#include <softsand/fluid/matrix_free_operators.h>
+#include <softsand/fluid/penalized_navier_stokes.h>
+#include <softsand/fluid/velocity_multigrid.h>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    template <int dim>
+    struct PenalizedNavierStokes<dim>::MatrixFreeData
+    {
+      MappingQ1<dim>                                     mapping;
+      AffineConstraints<double>                          velocity_constraints;
+      AffineConstraints<double>                          pressure_constraints;
+      std::shared_ptr<MatrixFree<dim, double>>           matrix_free;
+      std::shared_ptr<VelocityCoefficients<dim, double>> coefficients;
+      std::shared_ptr<VelocityOperator<dim, 2, double>>  velocity_operator;
+      StokesOperator<dim>                                stokes;
+      VelocityMultigrid<dim>                             multigrid;
+      TrilinosWrappers::SparseMatrix                     pressure_mass;
+      TrilinosWrappers::SparseMatrix                     pressure_laplace;
+      TrilinosWrappers::PreconditionILU                  pressure_mass_ilu;
+      TrilinosWrappers::PreconditionAMG                  pressure_laplace_amg;
+    };
+
+
+    namespace
+    {
+      /**
+       * Block upper-triangular preconditioner of the matrix-free path:
+       * p = -(M_p(1/mu)^-1 + L_p(1/beta)^-1) r_p, then one multigrid V-cycle
+       * for u from r_u - B^T p.
+       */
+      template <int dim>
+      class MatrixFreeBlockPreconditioner
+      {
+      public:
+        using VectorType      = LinearAlgebra::distributed::Vector<double>;
+        using BlockVectorType = LinearAlgebra::distributed::BlockVector<double>;
+
+        MatrixFreeBlockPreconditioner(
+          const StokesOperator<dim>               &stokes,
+          const VelocityMultigrid<dim>            &multigrid,
+          const TrilinosWrappers::PreconditionILU &pressure_mass,
+          const TrilinosWrappers::PreconditionAMG *pressure_laplace)
+            : stokes(stokes)
+            , multigrid(multigrid)
+            , pressure_mass(pressure_mass)
+            , pressure_laplace(pressure_laplace)
+        {}
+
+        void
+        vmult(BlockVectorType &dst, const BlockVectorType &src) const
+        {
+          pressure_mass.vmult(dst.block(1), src.block(1));
+          if (pressure_laplace != nullptr)
+            {
+              tmp_p.reinit(src.block(1), true);
+              pressure_laplace->vmult(tmp_p, src.block(1));
+              dst.block(1) += tmp_p;
+            }
+          dst.block(1) *= -1.;
+          tmp_u.reinit(src.block(0), true);
+          stokes.apply_gradient(tmp_u, dst.block(1));
+          tmp_u.sadd(-1., 1., src.block(0));
+          multigrid.vmult(dst.block(0), tmp_u);
+        }
+
+      private:
+        const StokesOperator<dim>               &stokes;
+        const VelocityMultigrid<dim>            &multigrid;
+        const TrilinosWrappers::PreconditionILU &pressure_mass;
+        const TrilinosWrappers::PreconditionAMG *pressure_laplace;
+        mutable VectorType                       tmp_u, tmp_p;
+      };
+    } // namespace
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::setup_matrix_free_dofs()
+    {
+      if (!matrix_free_data)
+        matrix_free_data = std::make_shared<MatrixFreeData>();
+      dof_handler_velocity.distribute_dofs(fe_velocity);
+      dof_handler_pressure.distribute_dofs(fe_pressure);
+
+      // Number both like the blocks of the combined handler, so that
+      // vectors, constraints and the pressure matrices carry over by index.
+      const types::global_dof_index n_u = dof_handler_velocity.n_dofs();
+      const IndexSet &owned_u = dof_handler_velocity.locally_owned_dofs();
+      const IndexSet &owned_p = dof_handler_pressure.locally_owned_dofs();
+      std::vector<types::global_dof_index> new_u(owned_u.n_elements()),
+        new_p(owned_p.n_elements());
+      std::vector<types::global_dof_index> combined(fe.n_dofs_per_cell()),
+        velocity(fe_velocity.n_dofs_per_cell()),
+        pressure(fe_pressure.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(combined);
+            typename DoFHandler<dim>::active_cell_iterator(
+              &triangulation,
+              cell->level(),
+              cell->index(),
+              &dof_handler_velocity)
+              ->get_dof_indices(velocity);
+            typename DoFHandler<dim>::active_cell_iterator(
+              &triangulation,
+              cell->level(),
+              cell->index(),
+              &dof_handler_pressure)
+              ->get_dof_indices(pressure);
+            for (unsigned int k = 0; k < combined.size(); ++k)
+              {
+                const auto base = fe.system_to_base_index(k);
+                if (base.first.first == 0)
+                  {
+                    const auto i =
+                      velocity[fe_velocity.component_to_system_index(
+                        base.first.second, base.second)];
+                    if (owned_u.is_element(i))
+                      new_u[owned_u.index_within_set(i)] = combined[k];
+                  }
+                else
+                  {
+                    const auto i = pressure[base.second];
+                    if (owned_p.is_element(i))
+                      new_p[owned_p.index_within_set(i)] = combined[k] - n_u;
+                  }
+              }
+          }
+      dof_handler_velocity.renumber_dofs(new_u);
+      dof_handler_pressure.renumber_dofs(new_p);
+      AssertThrow(dof_handler_velocity.locally_owned_dofs() ==
+                      owned_partitioning[0] &&
+                    dof_handler_pressure.locally_owned_dofs() ==
+                      owned_partitioning[1],
+                  ExcInternalError());
+    }
+
+
+    template <int dim>
+    unsigned int
+    PenalizedNavierStokes<dim>::solve_matrix_free(const Assembly kind,
+                                                  const double   dt)
+    {
+      using VectorType      = LinearAlgebra::distributed::Vector<double>;
+      using BlockVectorType = LinearAlgebra::distributed::BlockVector<double>;
+      Assert(kind == Assembly::steady_stokes, ExcNotImplemented());
+      (void)kind;
+
+      MatrixFreeData               &data  = *matrix_free_data;
+      const double                  mu    = fluid_parameters.viscosity;
+      const types::global_dof_index n_u   = dof_handler_velocity.n_dofs();
+      const SolverParameters::Schur schur = solver_parameters.schur;
+      const bool laplace = (schur == SolverParameters::Schur::cahouet_chabard);
+
+      BlockVectorType rhs, lifting, delta;
+      {
+        TimerOutput::Scope t(timer, "fluid: assemble");
+
+        // Homogeneous copies of the combined constraints, split by block.
+        data.velocity_constraints.clear();
+        data.velocity_constraints.reinit(relevant_partitioning[0]);
+        data.pressure_constraints.clear();
+        data.pressure_constraints.reinit(relevant_partitioning[1]);
+        for (const auto &line : constraints.get_lines())
+          {
+            const bool                    velocity_line = line.index < n_u;
+            const types::global_dof_index shift = velocity_line ? 0 : n_u;
+            AffineConstraints<double>    &c     = velocity_line ?
+                                                    data.velocity_constraints :
+                                                    data.pressure_constraints;
+            c.add_line(line.index - shift);
+            for (const auto &[column, weight] : line.entries)
+              {
+                Assert((column < n_u) == velocity_line, ExcInternalError());
+                c.add_entry(line.index - shift, column - shift, weight);
+              }
+          }
+        data.velocity_constraints.close();
+        data.pressure_constraints.close();
+
+        typename MatrixFree<dim, double>::AdditionalData additional_data;
+        additional_data.tasks_parallel_scheme =
+          MatrixFree<dim, double>::AdditionalData::none;
+        additional_data.mapping_update_flags =
+          update_gradients | update_JxW_values;
+        data.matrix_free = std::make_shared<MatrixFree<dim, double>>();
+        data.matrix_free->reinit(
+          data.mapping,
+          std::vector<const DoFHandler<dim> *>{&dof_handler_velocity,
+                                               &dof_handler_pressure},
+          std::vector<const AffineConstraints<double> *>{
+            &data.velocity_constraints, &data.pressure_constraints},
+          QGauss<1>(fe.degree + 1),
+          additional_data);
+        const MatrixFree<dim, double> &matrix_free = *data.matrix_free;
+
+        data.coefficients =
+          std::make_shared<VelocityCoefficients<dim, double>>();
+        data.coefficients->viscosity = mu;
+        data.velocity_operator =
+          std::make_shared<VelocityOperator<dim, 2, double>>();
+        data.velocity_operator->reinit(
+          data.matrix_free, data.coefficients, data.velocity_constraints, 0, 0);
+        data.stokes.reinit(data.matrix_free,
+                           data.velocity_operator,
+                           data.velocity_constraints,
+                           data.pressure_constraints);
+        data.stokes.initialize_dof_vector(rhs);
+        data.stokes.initialize_dof_vector(lifting);
+        data.stokes.initialize_dof_vector(delta);
+
+        // Pressure blocks of the Schur approximation (Q1, small).
+        for (TrilinosWrappers::SparseMatrix *matrix :
+             {&data.pressure_mass, &data.pressure_laplace})
+          {
+            TrilinosWrappers::SparsityPattern sparsity(owned_partitioning[1],
+                                                       owned_partitioning[1],
+                                                       relevant_partitioning[1],
+                                                       mpi_communicator);
+            DoFTools::make_sparsity_pattern(dof_handler_pressure,
+                                            sparsity,
+                                            data.pressure_constraints,
+                                            false);
+            sparsity.compress();
+            matrix->reinit(sparsity);
+          }
+
+        // The same coefficients as assemble(): beta, the right-hand side
+        // f + beta u_s, and the Schur weights.
+        double domain_size = 0;
+        {
+          const auto box = GridTools::compute_bounding_box(triangulation);
+          for (unsigned int d = 0; d < dim; ++d)
+            domain_size = std::max(domain_size, box.side_length(d));
+        }
+        const double beta_floor = mu / (domain_size * domain_size);
+
+        const QGauss<dim>                quadrature(fe.degree + 1);
+        const QGauss<dim - 1>            face_quadrature(fe.degree + 1);
+        const unsigned int               n_q = quadrature.size();
+        FEValues<dim>                    pressure_values(data.mapping,
+                                      fe_pressure,
+                                      quadrature,
+                                      update_values | update_gradients |
+                                        update_quadrature_points |
+                                        update_JxW_values);
+        FEFaceValues<dim>                velocity_face_values(data.mapping,
+                                               fe_velocity,
+                                               face_quadrature,
+                                               update_values |
+                                                 update_normal_vectors |
+                                                 update_JxW_values);
+        FEFaceValues<dim>                pressure_face_values(data.mapping,
+                                               fe_pressure,
+                                               face_quadrature,
+                                               update_values |
+                                                 update_JxW_values);
+        const FEValuesExtractors::Vector velocities(0);
+        const unsigned int n_p_dofs = fe_pressure.n_dofs_per_cell();
+        const unsigned int n_u_dofs = fe_velocity.n_dofs_per_cell();
+        FullMatrix<double> local_mass(n_p_dofs, n_p_dofs),
+          local_laplace(n_p_dofs, n_p_dofs);
+        Vector<double>                       local_face_rhs(n_u_dofs);
+        std::vector<types::global_dof_index> u_dofs(n_u_dofs), p_dofs(n_p_dofs);
+        std::vector<double>                  void_fraction(n_q, 1.);
+        std::vector<Tensor<1, dim>>          solid_velocity(n_q);
+        std::vector<int>                     solid_index(n_q, -1);
+        Vector<double>                       force_value(dim);
+
+        const unsigned int n_batches = matrix_free.n_cell_batches();
+        data.coefficients->reaction.reinit(n_batches, n_q);
+        typename VelocityOperator<dim, 2, double>::Evaluation  phi(matrix_free,
+                                                                  0,
+                                                                  0);
+        AlignedVector<Tensor<1, dim, VectorizedArray<double>>> rhs_values(n_q);
+        for (unsigned int batch = 0; batch < n_batches; ++batch)
+          {
+            for (unsigned int lane = 0;
+                 lane < matrix_free.n_active_entries_per_cell_batch(batch);
+                 ++lane)
+              {
+                const auto cell_u =
+                  matrix_free.get_cell_iterator(batch, lane, 0);
+                const auto cell_p =
+                  matrix_free.get_cell_iterator(batch, lane, 1);
+                pressure_values.reinit(cell_p);
+                const auto &points = pressure_values.get_quadrature_points();
+                if (solid_field != nullptr && !rigid_nodes())
+                  solid_field->evaluate(*cell_p,
+                                        points,
+                                        void_fraction,
+                                        solid_velocity,
+                                        solid_index);
+                cell_u->get_dof_indices(u_dofs);
+                cell_p->get_dof_indices(p_dofs);
+
+                // As assemble(): with rigid nodes the Schur mass is scaled by
+                // the cell's free velocity fraction.
+                double free_fraction = 1;
+                if (!rigid_dof_grain.empty())
+                  {
+                    unsigned int n_rigid = 0;
+                    for (const auto i : u_dofs)
+                      n_rigid += rigid_dof_grain.count(i);
+                    free_fraction =
+                      std::max(1e-4,
+                               std::pow(1. - double(n_rigid) / n_u_dofs, 4));
+                  }
+                const double h = cell_p->diameter() / std::sqrt(double(dim));
+
+                local_mass    = 0;
+                local_laplace = 0;
+                for (unsigned int q = 0; q < n_q; ++q)
+                  {
+                    const double beta =
+                      brinkman_coefficient(void_fraction[q], dt);
+                    data.coefficients->reaction(batch, q)[lane] = beta;
+                    body_force->vector_value(points[q], force_value);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      rhs_values[q][d][lane] =
+                        force_value[d] + beta * solid_velocity[q][d];
+
+                    double mass_weight = free_fraction / mu;
+                    if (schur == SolverParameters::Schur::weighted_mass)
+                      mass_weight = free_fraction / (mu + beta * h * h);
+                    const double laplace_weight =
+                      laplace ? 1. / (beta + beta_floor) : 0.;
+                    const double JxW = pressure_values.JxW(q);
+                    for (unsigned int i = 0; i < n_p_dofs; ++i)
+                      for (unsigned int j = 0; j < n_p_dofs; ++j)
+                        {
+                          local_mass(i, j) +=
+                            mass_weight * pressure_values.shape_value(i, q) *
+                            pressure_values.shape_value(j, q) * JxW;
+                          local_laplace(i, j) +=
+                            laplace_weight *
+                            (pressure_values.shape_grad(i, q) *
+                             pressure_values.shape_grad(j, q)) *
+                            JxW;
+                        }
+                  }
+
+                // Pressure faces: do-nothing condition mu du/dn - p n = -p_b n,
+                // and weak p = 0 in the Schur Laplacian.
+                for (const unsigned int f : cell_u->face_indices())
+                  if (cell_u->face(f)->at_boundary() &&
+                      boundary_conditions.face(cell_u->face(f)->boundary_id())
+                          .type == BoundaryConditions<dim>::Type::pressure)
+                    {
+                      const double p_b =
+                        boundary_conditions.face(cell_u->face(f)->boundary_id())
+                          .pressure;
+                      velocity_face_values.reinit(cell_u, f);
+                      local_face_rhs = 0;
+                      for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                        for (unsigned int i = 0; i < n_u_dofs; ++i)
+                          local_face_rhs(i) -=
+                            p_b *
+                            (velocity_face_values[velocities].value(i, q) *
+                             velocity_face_values.normal_vector(q)) *
+                            velocity_face_values.JxW(q);
+                      data.velocity_constraints.distribute_local_to_global(
+                        local_face_rhs, u_dofs, rhs.block(0));
+                      if (laplace)
+                        {
+                          pressure_face_values.reinit(cell_p, f);
+                          const double penalty = 1. / (beta_floor * h);
+                          for (unsigned int q = 0; q < face_quadrature.size();
+                               ++q)
+                            for (unsigned int i = 0; i < n_p_dofs; ++i)
+                              for (unsigned int j = 0; j < n_p_dofs; ++j)
+                                local_laplace(i, j) +=
+                                  penalty *
+                                  pressure_face_values.shape_value(i, q) *
+                                  pressure_face_values.shape_value(j, q) *
+                                  pressure_face_values.JxW(q);
+                        }
+                    }
+                data.pressure_constraints.distribute_local_to_global(
+                  local_mass, p_dofs, data.pressure_mass);
+                if (laplace)
+                  data.pressure_constraints.distribute_local_to_global(
+                    local_laplace, p_dofs, data.pressure_laplace);
+              }
+            phi.reinit(batch);
+            for (unsigned int q = 0; q < n_q; ++q)
+              phi.submit_value(rhs_values[q], q);
+            phi.integrate_scatter(EvaluationFlags::values, rhs.block(0));
+          }
+        rhs.compress(VectorOperation::add);
+        data.pressure_mass.compress(VectorOperation::add);
+        data.pressure_laplace.compress(VectorOperation::add);
+
+        // Inhomogeneous constraints (inflow, grain velocities): solve for
+        // the correction to the lifting that carries their values.
+        for (const auto &line : constraints.get_lines())
+          if (line.index < n_u && line.inhomogeneity != 0 &&
+              lifting.block(0).in_local_range(line.index))
+            lifting.block(0)(line.index) = line.inhomogeneity;
+        data.stokes.subtract_plain(rhs, lifting);
+
+        if (!boundary_conditions.has_pressure_face())
+          {
+            // As solve_linear(): project the continuity rows onto the range.
+            const auto rows =
+              constrained_local_rows(*matrix_free.get_vector_partitioner(1),
+                                     data.pressure_constraints);
+            std::vector<bool> constrained(rhs.block(1).locally_owned_size());
+            for (const auto i : rows)
+              constrained[i] = true;
+            double       sum   = 0;
+            unsigned int count = 0;
+            for (unsigned int i = 0; i < constrained.size(); ++i)
+              if (!constrained[i])
+                {
+                  sum += rhs.block(1).local_element(i);
+                  ++count;
+                }
+            sum   = Utilities::MPI::sum(sum, mpi_communicator);
+            count = Utilities::MPI::sum(count, mpi_communicator);
+            for (unsigned int i = 0; i < constrained.size(); ++i)
+              if (!constrained[i])
+                rhs.block(1).local_element(i) -= sum / count;
+          }
+      }
+
+      {
+        TimerOutput::Scope t(timer, "fluid: preconditioner setup");
+        const double inflation = rigid_nodes() ? rigid_node_inflation() : 0.;
+        const auto   level_constraints =
+          [this, inflation](const DoFHandler<dim>     &dof,
+                            AffineConstraints<double> &c) {
+            DoFTools::make_hanging_node_constraints(dof, c);
+            for (unsigned int b = 0; b < 2 * dim; ++b)
+              {
+                const auto type = boundary_conditions.face(b).type;
+                if (type == BoundaryConditions<dim>::Type::pressure)
+                  continue;
+                std::vector<bool> mask(dim, true);
+                if (type == BoundaryConditions<dim>::Type::symmetry)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    mask[d] = (d == b / 2);
+                DoFTools::make_zero_boundary_constraints(dof,
+                                                         b,
+                                                         c,
+                                                         ComponentMask(mask));
+              }
+            if (rigid_nodes() || constrained_interiors())
+              add_solid_constraints(dof, c, inflation, nullptr);
+          };
+        // Every level sees the grains as the fine operator does
+        // (rediscretization with the scene's void fraction), so a coarse
+        // cell cut by a grain is penalized as a whole: the coarse obstacle
+        // contains the fine one. Measured worse: the exact indicator at the
+        // coarse quadrature points (a coarse obstacle inside the fine one;
+        // 160-180 FGMRES iterations at Theta = 1e12) and a penalty capped at
+        // 1e2..1e4 mu / h^2 on coarse levels (no convergence at N = 16).
+        const auto level_coefficient =
+          [this, dt](const CellAccessor<dim, dim>  &cell,
+                     const std::vector<Point<dim>> &points,
+                     const bool,
+                     std::vector<double> &beta) {
+            beta.assign(points.size(), 0.);
+            if (solid_field == nullptr || rigid_nodes())
+              return;
+            std::vector<double>         vf;
+            std::vector<Tensor<1, dim>> u_s;
+            std::vector<int>            index;
+            solid_field->evaluate(cell, points, vf, u_s, index);
+            for (unsigned int q = 0; q < points.size(); ++q)
+              beta[q] = brinkman_coefficient(vf[q], dt);
+          };
+        typename VelocityMultigrid<dim>::Settings settings;
+        settings.smoother_degree = solver_parameters.smoother_degree;
+        settings.smoothing_range = solver_parameters.smoothing_range;
+        data.multigrid.initialize(dof_handler_velocity,
+                                  data.velocity_constraints,
+                                  data.velocity_operator,
+                                  level_constraints,
+                                  level_coefficient,
+                                  mu,
+                                  settings);
+
+        data.pressure_mass_ilu.initialize(data.pressure_mass);
+        if (laplace)
+          {
+            TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
+            amg_data.elliptic              = true;
+            amg_data.higher_order_elements = false;
+            amg_data.smoother_sweeps       = 2;
+            amg_data.aggregation_threshold = 0.02;
+            data.pressure_laplace_amg.initialize(data.pressure_laplace,
+                                                 amg_data);
+          }
+      }
+
+      TimerOutput::Scope t(timer, "fluid: solve");
+      // Start from the previous state (cheap re-solves), correction form.
+      {
+        BlockVector owned(owned_partitioning, mpi_communicator);
+        owned = solution;
+        for (unsigned int b = 0; b < 2; ++b)
+          std::copy(owned.block(b).begin(),
+                    owned.block(b).end(),
+                    delta.block(b).begin());
+        for (const auto &line : constraints.get_lines())
+          {
+            const unsigned int b = line.index < n_u ? 0 : 1;
+            const auto         i = line.index - (b == 0 ? 0 : n_u);
+            if (delta.block(b).in_local_range(i))
+              delta.block(b)(i) = 0;
+          }
+      }
+
+      const double  rhs_norm = rhs.l2_norm();
+      SolverControl control(
+        solver_parameters.max_linear_iterations,
+        std::max(solver_parameters.linear_tolerance * rhs_norm, 1e-300),
+        false,
+        false);
+      MatrixFreeBlockPreconditioner<dim> preconditioner(
+        data.stokes,
+        data.multigrid,
+        data.pressure_mass_ilu,
+        laplace ? &data.pressure_laplace_amg : nullptr);
+      SolverFGMRES<BlockVectorType> solver(
+        control, typename SolverFGMRES<BlockVectorType>::AdditionalData(100));
+      try
+        {
+          if (rhs_norm > 0)
+            solver.solve(data.stokes, delta, rhs, preconditioner);
+        }
+      catch (const SolverControl::NoConvergence &e)
+        {
+          AssertThrow(false,
+                      ExcMessage(
+                        "The fluid solver (FGMRES) did not converge in " +
+                        std::to_string(e.last_step) + " iterations (residual " +
+                        Utilities::to_string(e.last_residual) + " vs " +
+                        Utilities::to_string(control.tolerance()) +
+                        "). Raise 'fluid solver/max linear iterations' or "
+                        "check the scene (time step, theta, mesh)."));
+        }
+
+      BlockVector x(owned_partitioning, mpi_communicator);
+      for (unsigned int b = 0; b < 2; ++b)
+        std::copy(delta.block(b).begin(),
+                  delta.block(b).end(),
+                  x.block(b).begin());
+      constraints.distribute(x);
+      if (!boundary_conditions.has_pressure_face())
+        {
+          // Pressure is defined up to a constant: report zero mean.
+          solution          = x;
+          const double mean = VectorTools::compute_mean_value(
+            dof_handler, QGauss<dim>(fe.degree + 1), solution, dim);
+          x.block(1).add(-mean);
+        }
+      solution = x;
+
+      AssertThrow(std::isfinite(x.l2_norm()),
+                  ExcMessage("The fluid solution is not finite (NaN or Inf)."));
+      statistics.linear_iterations = control.last_step();
+      statistics.total_linear_iterations += control.last_step();
+      return control.last_step();
+    }
+
+    template void
+    PenalizedNavierStokes<2>::setup_matrix_free_dofs();
+    template void
+    PenalizedNavierStokes<3>::setup_matrix_free_dofs();
+    template unsigned int
+    PenalizedNavierStokes<2>::solve_matrix_free(const Assembly, const double);
+    template unsigned int
+    PenalizedNavierStokes<3>::solve_matrix_free(const Assembly, const double);
+  } // namespace fluid
+} // namespace softsand
