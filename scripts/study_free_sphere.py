@@ -38,6 +38,8 @@ def main():
     ap.add_argument('--ranks', type=int, default=1)
     ap.add_argument('--model', default='transient')
     ap.add_argument('--workdir', default=os.path.join(ROOT, 'output/study_free_sphere'))
+    ap.add_argument('--reuse', action='store_true',
+                    help='keep runs whose statistics already reach the end time')
     ap.add_argument('--plot', default=os.path.join(ROOT, 'doc/free_sphere.png'))
     a = ap.parse_args()
     base = open(os.path.join(ROOT, 'parameters', 'free_sphere.prm')).read()
@@ -46,6 +48,15 @@ def main():
     for dt in a.dt.split(','):
         name = 'dt%s' % dt
         start = time.time()
+        stats = os.path.join(a.workdir, name, 'statistics.txt')
+        if a.reuse and os.path.exists(stats):
+            rows = prm_tools.read_statistics(os.path.join(a.workdir, name))
+            if rows and rows[-1]['time'] >= a.end - 0.5 * float(dt):
+                curves[dt] = ([r['time'] for r in rows],
+                              [r['grain0_vx'] / U for r in rows],
+                              rows[-1]['wall_time'], rows[-1]['dofs'])
+                print('dt = %s s: reused %d steps' % (dt, len(rows)), flush=True)
+                continue
         row, wall, err = prm_tools.run(
             softsand, base, a.workdir, name, a.ranks,
             [('simulation control/time step', dt),
