@@ -32,6 +32,15 @@ namespace softsand
                         "'x y [z] radius [vx vy [vz] [wx wy] wz]' (SI); "
                         "relative paths are taken from the working "
                         "directory.");
+      prm.declare_entry("file velocities",
+                        "read",
+                        Patterns::Selection("read|zero"),
+                        "source = file: read: the grains start with the "
+                        "file's velocities; zero: at rest (a settled pack "
+                        "written by the DEM still carries small rattler "
+                        "velocities, up to 1e-4 m/s in the Fig. 5 packs, "
+                        "which a static pack's steady solve would impose on "
+                        "the fluid).");
       prm.declare_entry("diameter",
                         "1e-4",
                         Patterns::Double(0),
@@ -162,6 +171,7 @@ namespace softsand
       max_diameter      = prm.get_double("max diameter");
       mean_diameter     = prm.get_double("mean diameter");
       diameter_sd       = prm.get_double("diameter standard deviation");
+      zero_file_velocities = prm.get("file velocities") == "zero";
       velocity          = core::get_tensor<dim>(prm, "velocity");
       angular_velocity  = core::get_tensor<3>(prm, "angular velocity");
 
@@ -247,7 +257,7 @@ namespace softsand
             break;
           case S::file:
             grains               = io::read_grain_file<dim>(p.file);
-            velocities_from_file = true;
+            velocities_from_file = !p.zero_file_velocities;
             break;
           case S::simple_cubic:
             grains = simple_cubic_array(region, p.diameter, p.lattice_spacing);

@@ -33,6 +33,8 @@ namespace softsand
       Source      source = Source::none;
       std::string list;
       std::string file;
+      /// Start the grains of a file at rest instead of its velocities.
+      bool zero_file_velocities = false;
       double      diameter        = 1e-4;
       double      lattice_spacing = 2e-4;
       bool        region_is_domain = true;
