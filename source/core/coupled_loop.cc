@@ -208,6 +208,8 @@ namespace softsand
           const bool quasi_steady =
             cp.fluid_model ==
             coupling::CouplingParameters::FluidModel::quasi_steady;
+          const bool rigid_nodes =
+            p.fluid.solid_model == fluid::FluidParameters::SolidModel::rigid_nodes;
           const double finest = coupling::min_cell_edge(triangulation);
           // Quasi-steady: the held drag must not outlast the grains'
           // response time tau = (rho_s + rho_f / 2) d^2 / (18 mu) (explicit
@@ -354,9 +356,14 @@ namespace softsand
                         const double shell = std::max(
                           finest, std::sqrt(M_PI * mu / rho_f * dt));
                         const double shell_mass = rho_f * M_PI * d * d * shell;
+                        // Rigid nodes: the reaction also carries the
+                        // inertia of the fluid nodes inside the grain,
+                        // which follow it: one displaced mass more.
+                        const double covered =
+                          cp.added_mass_coefficient +
+                          (rigid_nodes ? 1. : 0.);
                         response[i] +=
-                          (rho_f * cp.added_mass_coefficient *
-                             grains[g].measure() +
+                          (rho_f * covered * grains[g].measure() +
                            shell_mass) /
                           dt;
                         // The shell turns with the grain: its moment of
@@ -407,17 +414,23 @@ namespace softsand
               statistics->add_value("max_overlap_ratio", s.max_overlap);
               statistics->add_value("coordination", s.coordination);
               statistics->add_value("mesh_adaptations", n_mesh_adaptations);
-              if (!grains.empty())
-                {
+              statistics->add_value("lost_grains",
+                                    Utilities::MPI::sum(dem->n_lost_grains(),
+                                                        mpi_communicator));
+              // The first grain's state (zero once every grain has left
+              // the domain: the columns stay).
+              {
+                const dem::Grain<dim> first =
+                  grains.empty() ? dem::Grain<dim>() : grains[0];
                   const char names[3] = {'x', 'y', 'z'};
                   for (unsigned int d = 0; d < 3; ++d)
                     {
                       statistics->add_value(std::string("grain0_") + names[d],
-                                            grains[0].center[d]);
+                                            first.center[d]);
                       statistics->add_value(std::string("grain0_v") + names[d],
-                                            grains[0].velocity[d]);
+                                            first.velocity[d]);
                       statistics->add_value(std::string("grain0_w") + names[d],
-                                            grains[0].angular_velocity[d]);
+                                            first.angular_velocity[d]);
                     }
                 }
               for (const auto &wall : dem->get_walls())

@@ -95,20 +95,25 @@ namespace softsand
               file << '\n';
             }
         }
-      bool same = row.size() == columns.size();
-      for (unsigned int i = 0; same && i < row.size(); ++i)
-        same = row[i].first == columns[i];
-      if (!same)
+      // Columns fixed by the first row; a quantity that no longer exists
+      // (say, the drag once every grain has left the domain) reads 0. A
+      // column the first row did not have is an error.
+      std::vector<std::pair<std::string, double>> ordered;
+      for (const auto &c : columns)
         {
-          std::string got, expected;
+          double value = 0;
           for (const auto &entry : row)
-            got += " " + entry.first;
-          for (const auto &c : columns)
-            expected += " " + c;
-          AssertThrow(false,
-                      ExcMessage("Internal error: statistics row with the "
-                                 "columns" + got + " instead of" + expected));
+            if (entry.first == c)
+              value = entry.second;
+          ordered.emplace_back(c, value);
         }
+      for (const auto &entry : row)
+        AssertThrow(std::find(columns.begin(), columns.end(), entry.first) !=
+                      columns.end(),
+                    ExcMessage("Internal error: statistics column <" +
+                               entry.first +
+                               "> appeared after the first row."));
+      row = ordered;
       if (is_writer)
         {
           file << std::setprecision(10);
