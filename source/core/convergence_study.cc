@@ -10,6 +10,7 @@
 #include <softsand/core/simulator.h>
 
 #include <malloc.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
@@ -77,6 +78,16 @@ namespace softsand
           return false;
         clear << "5" << std::flush;
         return clear.good();
+      }
+
+      /// CPU time (user + system) of this process so far (s).
+      double
+      process_cpu_time()
+      {
+        rusage usage;
+        getrusage(RUSAGE_SELF, &usage);
+        return usage.ru_utime.tv_sec + 1e-6 * usage.ru_utime.tv_usec +
+               usage.ru_stime.tv_sec + 1e-6 * usage.ru_stime.tv_usec;
       }
 
       /// Sum of a column over the rows of a statistics table (rank 0 reads).
@@ -376,6 +387,7 @@ namespace softsand
                                                mpi_communicator) == 1 &&
                            memory_per_run;
           MPI_Barrier(mpi_communicator);
+          const double                  cpu_start = process_cpu_time();
           Timer                         clock(mpi_communicator, true);
           std::map<std::string, double> results;
           {
@@ -386,6 +398,11 @@ namespace softsand
           clock.stop();
           const double wall_time =
             Utilities::MPI::max(clock.wall_time(), mpi_communicator);
+          // CPU time is what a run costs on a shared machine, where the
+          // wall time also counts the other jobs' share of the cores.
+          const double cpu_time = Utilities::MPI::sum(process_cpu_time() -
+                                                        cpu_start,
+                                                      mpi_communicator);
 
           Run r;
           r.value      = v;
@@ -406,6 +423,7 @@ namespace softsand
           r.cells           = static_cast<unsigned int>(results["cells"]);
           r.dofs            = static_cast<unsigned int>(results["dofs"]);
           r.wall_time       = wall_time;
+          r.cpu_time        = cpu_time;
           double iterations = 0;
           if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
             iterations = sum_statistics_column(run_parameters.output.directory +
@@ -418,11 +436,20 @@ namespace softsand
           r.peak_memory =
             Utilities::MPI::sum(memory.VmHWM / 1024., mpi_communicator);
           study_runs.push_back(r);
+          // The tables so far: a long study that stops (time limit, memory)
+          // keeps its finished runs.
+          if (study_runs.size() >= 2 && k + 1 < values.size())
+            {
+              evaluate();
+              fill_table();
+              write_tables(false);
+            }
           pcout << "Convergence study: " << cs.knob_name() << " = " << v << ": "
                 << cs.quantity << " = " << std::setprecision(10) << r.quantity
                 << std::setprecision(6) << ", " << r.cells << " cells, "
                 << r.dofs << " DoFs, " << r.fgmres_iterations
-                << " FGMRES iterations, " << r.wall_time << " s, "
+                << " FGMRES iterations, " << r.wall_time << " s wall, "
+                << r.cpu_time << " s CPU, "
                 << r.peak_memory << " MB" << std::endl;
         }
       if (!memory_per_run)
@@ -433,7 +460,7 @@ namespace softsand
 
       evaluate();
       fill_table();
-      write_tables();
+      write_tables(true);
     }
 
 
@@ -541,6 +568,7 @@ namespace softsand
             }
           convergence_table.add_value("fgmres", r.fgmres_iterations);
           convergence_table.add_value("wall_s", r.wall_time);
+          convergence_table.add_value("cpu_s", r.cpu_time);
           convergence_table.add_value("memory_MB", r.peak_memory);
         }
       convergence_table.set_scientific(
@@ -557,12 +585,14 @@ namespace softsand
       convergence_table.set_precision("richardson", 8);
       convergence_table.set_precision("order", 2);
       convergence_table.set_precision("wall_s", 1);
+      convergence_table.set_precision("cpu_s", 1);
       convergence_table.set_precision("memory_MB", 0);
       convergence_table.set_tex_caption(knob, cs.knob_name());
       convergence_table.set_tex_caption("change", "change vs finest");
       convergence_table.set_tex_caption("richardson_error",
                                         "distance to Richardson");
       convergence_table.set_tex_caption("wall_s", "wall time [s]");
+      convergence_table.set_tex_caption("cpu_s", "CPU time [s]");
       convergence_table.set_tex_caption("memory_MB", "peak memory [MB]");
       convergence_table.set_tex_caption("fgmres", "FGMRES iterations");
       if (cs.has_reference)
@@ -583,7 +613,7 @@ namespace softsand
 
     template <int dim>
     void
-    ConvergenceStudy<dim>::write_tables() const
+    ConvergenceStudy<dim>::write_tables(const bool final) const
     {
       const auto        &cs = parameters.convergence_study;
       std::ostringstream text, org, tex;
@@ -624,8 +654,9 @@ namespace softsand
                 << std::setprecision(3) << last.richardson_error << " of it.";
       summary << '\n';
 
-      pcout << "\nConvergence table (" << cs.knob_name() << "):\n"
-            << text.str() << summary.str() << std::endl;
+      if (final)
+        pcout << "\nConvergence table (" << cs.knob_name() << "):\n"
+              << text.str() << summary.str() << std::endl;
       if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         {
           const std::string base =

@@ -37,6 +37,8 @@ namespace softsand
         /// FGMRES iterations summed over all solves of the run.
         unsigned int fgmres_iterations = 0;
         double       wall_time         = 0;
+        /// CPU time (user + system) of the run, summed over ranks (s).
+        double cpu_time = 0;
         /// Peak resident memory of the run, summed over ranks (MB).
         double peak_memory = 0;
         /// (Q - Q_finest) / |Q_finest|.
@@ -76,8 +78,9 @@ namespace softsand
       evaluate();
       void
       fill_table();
+      /// Text, markdown and LaTeX tables (@p final: also to the screen).
       void
-      write_tables() const;
+      write_tables(const bool final) const;
 
       const Parameters<dim> &parameters;
       MPI_Comm               mpi_communicator;
