@@ -243,6 +243,16 @@ def cases():
     return c
 
 
+# The subset of test 'extremes_quick' (tests/CMakeLists.txt): a few
+# seconds each on one core; every kind of outcome (finished, stopped with
+# a message) and every mode (fluid, granular, coupled), 2 ranks included.
+QUICK = ['theta_1e12', 'cells_per_diameter_2', 'cells_per_diameter_0.5',
+         'dem_dt_at_limit', 'dem_dt_far_above', 'cohesion_1e+06',
+         'overlapping_grains_fluid_large', 'overlapping_grains_dem',
+         'empty_granular_domain_automatic_dt', 'empty_coupled_domain',
+         'rank_boundary_dem', 'grain_leaves_dem']
+
+
 def parse_results(stdout):
     """The 'Results' block a run prints: name -> value."""
     results, inside = {}, False
@@ -279,10 +289,16 @@ def run_case(case, workdir, softsand):
     cmd = [softsand, prm]
     if case.ranks > 1:
         cmd = ['mpirun', '-np', str(case.ranks)] + cmd
+    # scripts/mpi_env.sh: Open MPI as root, 2 ranks on few cores, one
+    # thread per rank.
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT='1',
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1',
+               OMPI_MCA_rmaps_base_oversubscribe='1', OMP_NUM_THREADS='1',
+               DEAL_II_NUM_THREADS='1')
     start = time.time()
     try:
         proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True,
-                              timeout=case.timeout)
+                              timeout=case.timeout, env=env)
     except subprocess.TimeoutExpired:
         return 'FAIL', 'hang: no end within %d s' % case.timeout, \
             time.time() - start
@@ -305,7 +321,16 @@ def run_case(case, workdir, softsand):
     n_files, problems = scan_outputs.scan_directory(outdir)
     if problems:
         return 'FAIL', 'NaN/Inf: ' + '; '.join(problems[:3]), wall
-    results = parse_results(proc.stdout)
+    # The last statistics row, overridden by the printed Results block
+    # (which leaves out some columns, e.g. 'grains' of a coupled run).
+    results = {}
+    try:
+        rows = prm_tools.read_statistics(outdir)
+        if rows:
+            results.update(rows[-1])
+    except (OSError, ValueError):
+        pass
+    results.update(parse_results(proc.stdout))
     bad = [k for k, v in results.items() if not math.isfinite(v)]
     if bad:
         return 'FAIL', 'non-finite result: ' + ', '.join(bad), wall
@@ -321,14 +346,23 @@ def main():
                     'contains one of these comma-separated strings')
     ap.add_argument('--list', action='store_true')
     ap.add_argument('--workdir', default='output/extremes')
+    ap.add_argument('--softsand', default=os.path.join(ROOT, 'build',
+                                                       'softsand'),
+                    help='the executable (default: build/softsand)')
+    ap.add_argument('--quick', action='store_true',
+                    help='the cheap subset the test suite runs (%s)' %
+                    ', '.join(QUICK))
     a = ap.parse_args()
-    selected = [c for c in cases()
-                if not a.only or any(s in c.name for s in a.only.split(','))]
+    if a.quick:
+        selected = [c for c in cases() if c.name in QUICK]
+    else:
+        selected = [c for c in cases() if not a.only or
+                    any(s in c.name for s in a.only.split(','))]
     if a.list:
         for c in selected:
             print('%-40s %s' % (c.name, c.varied))
         return
-    softsand = os.path.join(ROOT, 'build', 'softsand')
+    softsand = os.path.abspath(a.softsand)
     workdir = os.path.abspath(os.path.join(ROOT, a.workdir))
     print('| case | varied | ranks | outcome | numbers / message | '
           'wall [s] |')
