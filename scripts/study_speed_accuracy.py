@@ -129,7 +129,8 @@ def main():
     ap.add_argument('--adaptive', default='2,3,4,6,8,12,16,24')
     ap.add_argument('--uniform', default='2,3,4')
     ap.add_argument('--reference-n', default='32',
-                    help='N of a separate adaptive run giving the reference')
+                    help='N of a separate adaptive run giving the reference, '
+                    "or 'finest': the finest adaptive run of the sequence")
     ap.add_argument('--reference', type=float, default=None,
                     help='reference value instead of a reference run')
     ap.add_argument('--box', type=float, default=None,
@@ -162,6 +163,16 @@ def main():
                         extra, a.reuse)
     if a.reference is not None:
         reference, ref_text = a.reference, 'given value %.8g' % a.reference
+    elif a.reference_n == 'finest':
+        f = adaptive[-1]
+        reference = f[quantity]
+        ref_text = ('the finest adaptive run of the sequence, N = %g: %.8g '
+                    '(%d cells, %d DoFs)' % (f['N'], reference, f['cells'],
+                                             f['dofs']))
+        if f.get('richardson') is not None:
+            ref_text += ('; its Richardson estimate %.8g (%+.2f %%)' %
+                         (f['richardson'],
+                          100 * (f['richardson'] / reference - 1)))
     else:
         ref = run_reference(a.case, a.reference_n, workdir, extra, a.reuse)
         reference = ref[quantity]
