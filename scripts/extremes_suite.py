@@ -125,6 +125,15 @@ def cases():
                       % theta, [('fluid/theta', theta),
                                 ('fluid/solid model', 'penalization')],
                       check=band('stokes_drag_ratio', 0.3, 5.0)))
+    # Theta at both ends in a coupled run (transient fluid, a settling
+    # sphere).
+    for theta in ('1', '1e12'):
+        c.append(Case('theta_%s_coupled' % theta, 'coupled_sphere',
+                      'Theta = %s, coupled transient (penalization)' % theta,
+                      [('fluid/theta', theta),
+                       ('fluid/solid model', 'penalization'),
+                       ('coupling/fluid model', 'transient')],
+                      check=band('grain0_velocity_2', -2e-3, -1e-6, '%.3g')))
     # 2 .. 32 cells per diameter (rigid nodes).
     for n in ('2', '4', '8', '16', '32'):
         c.append(Case('cells_per_diameter_%s' % n, 'sphere',
