@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Test 'extremes_quick': the cheap subset of scripts/extremes_suite.py
-# (--quick), then scripts/scan_outputs.py over every output of it, and a
-# negative control (the scanner must flag a NaN and an Inf).
+# (--quick), then scripts/scan_outputs.py over every output of it, and
+# negative controls (the scanner must flag a NaN and an Inf in text tables
+# and in compressed binary VTU arrays).
 # Usage: extremes_quick.sh SOURCE_DIR SOFTSAND WORKDIR
 set -euo pipefail
 src=$1 softsand=$2 work=$3
@@ -18,4 +19,5 @@ if python3 scripts/scan_outputs.py "$work/control" > "$work/control.log"; then
   echo "scan_outputs.py missed a NaN/Inf"; exit 1
 fi
 grep -c 'control/' "$work/control.log"
+python3 tests/tools/scan_outputs_control.py "$work/vtu_control"
 echo "extremes_quick: passed"
