@@ -5,7 +5,10 @@
 #include <softsand/core/parameters.h>
 #include <softsand/core/simulator.h>
 
+#include <chrono>
 #include <iostream>
+#include <string>
+#include <thread>
 
 namespace
 {
@@ -55,10 +58,20 @@ main(int argc, char *argv[])
         }
       catch (const std::exception &e)
         {
-          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-            std::cerr << "softsand: error: " << softsand::core::error_message(e) << std::endl;
-          // Input errors are found on every rank alike; a failure on some
-          // ranks only must not leave the others waiting.
+          const unsigned int rank =
+            Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+          // Input errors are found on every rank alike and rank 0 reports
+          // them. A failure on other ranks only (a grain, a solver) must
+          // be reported too: those ranks wait a moment, so that a common
+          // failure is reported once (rank 0's abort ends them first).
+          if (rank > 0)
+            std::this_thread::sleep_for(std::chrono::seconds(2));
+          std::cerr << "softsand: error: "
+                    << (rank > 0 ? "(rank " + std::to_string(rank) + ") " :
+                                   std::string())
+                    << softsand::core::error_message(e) << std::endl;
+          // A failure on some ranks only must not leave the others
+          // waiting.
           if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
             MPI_Abort(MPI_COMM_WORLD, 1);
           return 1;

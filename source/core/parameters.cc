@@ -27,6 +27,7 @@ namespace softsand
       fluid::BoundaryConditions<dim>::declare_parameters(prm);
       io::OutputParameters::declare_parameters(prm);
       postprocess::PostprocessingParameters::declare_parameters(prm);
+      ConvergenceStudyParameters::declare_parameters(prm);
     }
 
 
@@ -46,6 +47,7 @@ namespace softsand
         prm, BoundingBox<dim>(std::make_pair(mesh.lower_corner, mesh.upper_corner)));
       output.parse_parameters(prm);
       postprocessing.parse_parameters(prm);
+      convergence_study.parse_parameters(prm);
       if (postprocessing.flow_axis >= dim)
         throw_invalid_parameter("postprocessing/flow axis",
                                 "z",

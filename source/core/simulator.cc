@@ -5,6 +5,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 
+#include <softsand/core/convergence_study.h>
 #include <softsand/core/granular_simulator.h>
 #include <softsand/core/parameter_tools.h>
 #include <softsand/core/simulator.h>
@@ -444,8 +445,14 @@ namespace softsand
         prm.parse_input(filename);
         Parameters<d> parameters;
         parameters.parse_parameters(prm);
-        if (parameters.simulation_control.mode ==
-            SimulationControl::Mode::granular)
+        if (parameters.convergence_study.knob !=
+            ConvergenceStudyParameters::Knob::none)
+          {
+            ConvergenceStudy<d> study(parameters, comm);
+            study.run();
+          }
+        else if (parameters.simulation_control.mode ==
+                 SimulationControl::Mode::granular)
           {
             if constexpr (d == 3)
               {

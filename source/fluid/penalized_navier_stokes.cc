@@ -364,9 +364,11 @@ namespace softsand
           dof_handler, coupling, dsp, constraints, false);
         // Moving solids pin pressure nodes they enclose (p = 0) that this
         // pattern saw free: those rows need the diagonal that the
-        // pressure-pressure block lacks.
+        // pressure-pressure block lacks. Every locally relevant row: a
+        // rank assembling a cell whose pinned node another rank owns
+        // writes that diagonal too (a grain on a rank boundary).
         if (moving_solids)
-          for (const auto i : owned)
+          for (const auto i : relevant)
             dsp.add(i, i);
         SparsityTools::distribute_sparsity_pattern(dsp,
                                                    owned,
@@ -386,9 +388,10 @@ namespace softsand
         DoFTools::make_sparsity_pattern(
           dof_handler, coupling, dsp, constraints, false);
         // Moving solids constrain velocity nodes that this pattern saw
-        // free: their rows get a diagonal entry.
+        // free: their rows get a diagonal entry (locally relevant rows,
+        // as above).
         if (moving_solids)
-          for (const auto i : owned)
+          for (const auto i : relevant)
             dsp.add(i, i);
         SparsityTools::distribute_sparsity_pattern(dsp,
                                                    owned,

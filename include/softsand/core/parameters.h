@@ -3,6 +3,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <softsand/core/convergence_study_parameters.h>
 #include <softsand/core/mesh_parameters.h>
 #include <softsand/core/simulation_control.h>
 #include <softsand/coupling/coupling_parameters.h>
@@ -37,6 +38,7 @@ namespace softsand
       fluid::BoundaryConditions<dim>       boundary_conditions;
       io::OutputParameters                 output;
       postprocess::PostprocessingParameters postprocessing;
+      ConvergenceStudyParameters           convergence_study;
 
       static void
       declare_parameters(ParameterHandler &prm);
