@@ -46,7 +46,9 @@ namespace softsand
         "'plane px py pz nx ny nz velocity vx vy vz', "
         "'plane px py pz nx ny nz servo' (driven to the servo pressure; the "
         "normal points to the grains), "
-        "'cylinder px py pz ax ay az radius' (grains inside).");
+        "'cylinder px py pz ax ay az radius [inside|outside]' (a point on "
+        "the axis, the axis, the radius; grains inside it, the default, or "
+        "outside it: a post or the wall of an inlet).");
       prm.declare_entry(
         "octagon", "",
         Patterns::Anything(),
@@ -212,7 +214,7 @@ namespace softsand
           for (unsigned int i = 0; i < (shape == "cylinder" ? 7u : 6u); ++i)
             if (!(in >> v[i]))
               bad("expected 'plane px py pz nx ny nz MOTION' or 'cylinder px "
-                  "py pz ax ay az radius'");
+                  "py pz ax ay az radius [inside|outside]'");
           const Point<3>     point(v[0], v[1], v[2]);
           const Tensor<1, 3> dir({v[3], v[4], v[5]});
           if (!(dir.norm() > 0))
@@ -225,6 +227,14 @@ namespace softsand
               w.radius = v[6];
               if (!(w.radius > 0))
                 bad("the cylinder radius must be > 0");
+              std::string side;
+              if (in >> side)
+                {
+                  if (side == "outside")
+                    w.outside = true;
+                  else if (side != "inside")
+                    bad("a cylinder's grains are 'inside' or 'outside' it");
+                }
               const auto [s_min, s_max] = cylinder_axis_range(w, domain);
               w.area = 2 * M_PI * w.radius * std::max(s_max - s_min, 1e-300);
               walls.push_back(w);

@@ -13,6 +13,8 @@
 #include <softsand/fluid/fluid_parameters.h>
 #include <softsand/io/output_parameters.h>
 #include <softsand/postprocess/flow_diagnostics.h>
+#include <softsand/postprocess/fracture_area.h>
+#include <softsand/postprocess/radial_flow.h>
 
 #include <string>
 
@@ -37,6 +39,8 @@ namespace softsand
       fluid::BoundaryConditions<dim>       boundary_conditions;
       io::OutputParameters                 output;
       postprocess::PostprocessingParameters postprocessing;
+      postprocess::RadialFlowParameters     radial_flow;
+      postprocess::FractureAreaParameters   fracture_area;
 
       static void
       declare_parameters(ParameterHandler &prm);
