@@ -26,6 +26,7 @@ import argparse
 import concurrent.futures
 import math
 import os
+import subprocess
 import sys
 import time
 
@@ -45,11 +46,27 @@ def run_one(args, text, p):
     if args.steps is not None:
         overrides.append(('simulation control/max time steps',
                           '%d' % args.steps))
+    # As prm_tools.run, but the grains and the fracture map of the last
+    # step are written (a large output interval: the last step only).
+    for path, value in overrides:
+        text = prm_tools.set_entry(text, path, value)
+    outdir = os.path.join(args.workdir, name)
+    text = prm_tools.set_entry(text, 'output/directory', outdir)
+    text = prm_tools.set_entry(text, 'output/output interval', '100000')
+    text = prm_tools.set_entry(text, 'output/verbosity', 'quiet')
+    prm = os.path.join(args.workdir, name + '.prm')
+    os.makedirs(args.workdir, exist_ok=True)
+    with open(prm, 'w') as f:
+        f.write(text)
+    cmd = [args.softsand, prm]
+    if args.ranks > 1:
+        cmd = ['mpirun', '-np', str(args.ranks)] + cmd
     start = time.time()
-    last, wall, err = prm_tools.run(args.softsand, text, args.workdir, name,
-                                    ranks=args.ranks, overrides=overrides)
-    if last is None:
-        return dict(p=p, error=' '.join(err), wall=wall)
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    if proc.returncode != 0:
+        return dict(p=p, error=' '.join(proc.stderr.strip().splitlines()[-1:]),
+                    wall=time.time() - start)
+    last = prm_tools.read_statistics(outdir)[-1]
     rows = prm_tools.read_statistics(os.path.join(args.workdir, name))
     return dict(p=p, steps=int(last['step']), time=last['time'],
                 area0=rows[0]['fracture_area'],
