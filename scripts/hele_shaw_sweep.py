@@ -20,7 +20,10 @@ that does; their geometric mean is reported.
 --cells-per-diameter and --cohesion override mesh/cells per diameter and
 dem/material/cohesion energy density (refinement and cohesion studies);
 --steps overrides simulation control/max time steps. Results are also
-written to <workdir>/sweep.txt. Run from the repository root.
+written to <workdir>/sweep.txt. --summarize tabulates the runs already in
+<workdir> (an unfinished run: its last statistics row) into
+<workdir>/summary.txt without running anything. Run from the repository
+root.
 """
 import argparse
 import concurrent.futures
@@ -77,6 +80,24 @@ def run_one(args, text, p):
                 wall=time.time() - start)
 
 
+def summarize_one(args, p):
+    """The result of a run from its statistics (also of an unfinished one:
+    its last row)."""
+    outdir = os.path.join(args.workdir, 'p%g' % p)
+    try:
+        rows = prm_tools.read_statistics(outdir)
+    except (OSError, ValueError):
+        rows = []
+    if not rows:
+        return dict(p=p, error='no statistics in ' + outdir, wall=0)
+    last = rows[-1]
+    return dict(p=p, steps=int(last['step']), time=last['time'],
+                area0=rows[0]['fracture_area'], area=last['fracture_area'],
+                open_area=last['open_area'], max_speed=last['max_speed'],
+                dofs=last['dofs'], cells=last['cells'],
+                wall=last['wall_time'])
+
+
 def main():
     a = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     a.add_argument('--scene', default='parameters/hele_shaw_small.prm')
@@ -89,6 +110,9 @@ def main():
     a.add_argument('--cells-per-diameter', type=float, default=None)
     a.add_argument('--cohesion', type=float, default=None)
     a.add_argument('--steps', type=int, default=None)
+    a.add_argument('--summarize', action='store_true',
+                   help='do not run: tabulate the statistics already in '
+                        '<workdir> (unfinished runs: their last row)')
     a.add_argument('--open-area', type=float,
                    default=0.5 * math.pi / 4 * 1.35e-3 ** 2)
     args = a.parse_args()
@@ -97,8 +121,12 @@ def main():
     with open(args.scene) as f:
         text = f.read()
     pressures = [float(p) for p in args.pressures.split(',')]
-    with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        results = list(pool.map(lambda p: run_one(args, text, p), pressures))
+    if args.summarize:
+        results = [summarize_one(args, p) for p in pressures]
+    else:
+        with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+            results = list(pool.map(lambda p: run_one(args, text, p),
+                                    pressures))
     lines = ['# scene %s, cells per diameter %s, cohesion %s' %
              (args.scene, args.cells_per_diameter, args.cohesion),
              '# p_i[Pa] steps t_end[s] area_start[mm^2] area_end[mm^2] '
@@ -131,7 +159,8 @@ def main():
         lines.append('# every pressure fractured: critical pressure below '
                      '%g Pa' % min(pressures))
     os.makedirs(args.workdir, exist_ok=True)
-    with open(os.path.join(args.workdir, 'sweep.txt'), 'w') as f:
+    with open(os.path.join(args.workdir, 'summary.txt' if args.summarize
+                           else 'sweep.txt'), 'w') as f:
         f.write('\n'.join(lines) + '\n')
     print('\n'.join(lines))
 
