@@ -46,6 +46,9 @@ def run_one(args, text, p):
     if args.cohesion is not None:
         overrides.append(('dem/material/cohesion energy density',
                           '%g' % args.cohesion))
+    if args.linear_tolerance is not None:
+        overrides.append(('fluid solver/linear tolerance',
+                          '%g' % args.linear_tolerance))
     if args.steps is not None:
         overrides.append(('simulation control/max time steps',
                           '%d' % args.steps))
@@ -110,6 +113,11 @@ def main():
     a.add_argument('--cells-per-diameter', type=float, default=None)
     a.add_argument('--cohesion', type=float, default=None)
     a.add_argument('--steps', type=int, default=None)
+    a.add_argument('--linear-tolerance', type=float, default=None,
+                   help='fluid solver/linear tolerance (relative to the '
+                        'right-hand side); the moving cohesive pack stalls '
+                        'FGMRES near 1.3e-8 absolute, above 1e-6 relative '
+                        'for p_i <= 8 kPa')
     a.add_argument('--summarize', action='store_true',
                    help='do not run: tabulate the statistics already in '
                         '<workdir> (unfinished runs: their last row)')
