@@ -69,8 +69,8 @@ main(int argc, char **argv)
     AssertThrow(dem.get_walls()[0].outside, ExcInternalError());
     std::vector<dem::Grain<3>> grains(1);
     grains[0].radius = r;
-    // Outside the post, moving towards it at 30 degrees from the radial (it would
-    // miss the post at 60).
+    // Outside the post, moving towards it at 30 degrees from the radial (it
+    // would miss the post at 60).
     grains[0].center   = Point<3>(1.3e-3 * e_up + 1e-4 * axis);
     const double angle = M_PI / 6;
     grains[0].velocity =
@@ -94,11 +94,11 @@ main(int argc, char **argv)
         if (all.empty())
           {
             deallog << "bounce: the grain left the box at step "
-                    << dem.step_number() << " (contact steps "
-                    << contact_steps << ")" << std::endl;
+                    << dem.step_number() << " (contact steps " << contact_steps
+                    << ")" << std::endl;
             return 1;
           }
-        const dem::Grain<3> g = all[0];
+        const dem::Grain<3> g     = all[0];
         const Tensor<1, 3>  rho   = radial(g.center, axis);
         const double        delta = r - (rho.norm() - r_c);
         // The wall's force is minus the force on the grain.
@@ -125,19 +125,17 @@ main(int argc, char **argv)
             << (worst_angle < 1e-12 ? "yes" : "NO")
             << ", Hertz force of the exact overlap within 1e-9: "
             << (worst_force < 1e-9 ? "yes" : "NO") << std::endl;
-    deallog << "bounce: axial velocity kept within 1e-12: "
-            << (std::abs(g.velocity * axis / axial_0 - 1) < 1e-12 ? "yes" :
-                                                                    "NO")
-            << ", angular momentum about the axis within 1e-9: "
-            << (std::abs(angular_momentum(g) / l_0 - 1) < 1e-9 ? "yes" : "NO")
-            << ", speed within 1e-3: "
-            << (std::abs(g.velocity.norm() / grains[0].velocity.norm() - 1) <
-                    1e-3 ?
-                  "yes" :
-                  "NO")
-            << ", radial velocity outwards: "
-            << (g.velocity * radial(g.center, axis) > 0 ? "yes" : "NO")
-            << std::endl;
+    deallog
+      << "bounce: axial velocity kept within 1e-12: "
+      << (std::abs(g.velocity * axis / axial_0 - 1) < 1e-12 ? "yes" : "NO")
+      << ", angular momentum about the axis within 1e-9: "
+      << (std::abs(angular_momentum(g) / l_0 - 1) < 1e-9 ? "yes" : "NO")
+      << ", speed within 1e-3: "
+      << (std::abs(g.velocity.norm() / grains[0].velocity.norm() - 1) < 1e-3 ?
+            "yes" :
+            "NO")
+      << ", radial velocity outwards: "
+      << (g.velocity * radial(g.center, axis) > 0 ? "yes" : "NO") << std::endl;
   }
 
   // 2. A ring of grains thrown at a vertical post between two plates.
@@ -160,12 +158,12 @@ main(int argc, char **argv)
     for (unsigned int k = 0; k < 40; ++k)
       {
         // Two rings (two layers), 20 grains each, 1 mm from the post.
-        const double   phi = 2 * M_PI * (k % 20) / 20 + (k / 20) * 0.1;
+        const double       phi = 2 * M_PI * (k % 20) / 20 + (k / 20) * 0.1;
         const Tensor<1, 3> out({std::cos(phi), std::sin(phi), 0});
-        dem::Grain<3>  g;
-        g.radius   = r;
-        g.center   = Point<3>((r_c + r + 1e-3) * out +
-                            (k < 20 ? 0.6e-3 : 1.9e-3) * z);
+        dem::Grain<3>      g;
+        g.radius = r;
+        g.center =
+          Point<3>((r_c + r + 1e-3) * out + (k < 20 ? 0.6e-3 : 1.9e-3) * z);
         g.velocity = -speed * out;
         grains.push_back(g);
       }
