@@ -49,6 +49,9 @@ def run_one(args, text, p):
     if args.linear_tolerance is not None:
         overrides.append(('fluid solver/linear tolerance',
                           '%g' % args.linear_tolerance))
+    if args.end_time is not None:
+        overrides.append(('simulation control/end time',
+                          '%g' % args.end_time))
     if args.steps is not None:
         overrides.append(('simulation control/max time steps',
                           '%d' % args.steps))
@@ -113,6 +116,8 @@ def main():
     a.add_argument('--cells-per-diameter', type=float, default=None)
     a.add_argument('--cohesion', type=float, default=None)
     a.add_argument('--steps', type=int, default=None)
+    a.add_argument('--end-time', type=float, default=None,
+                   help='simulation control/end time (s)')
     a.add_argument('--linear-tolerance', type=float, default=None,
                    help='fluid solver/linear tolerance (relative to the '
                         'right-hand side); the moving cohesive pack stalls '
