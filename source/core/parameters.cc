@@ -28,6 +28,8 @@ namespace softsand
       io::OutputParameters::declare_parameters(prm);
       postprocess::PostprocessingParameters::declare_parameters(prm);
       ConvergenceStudyParameters::declare_parameters(prm);
+      postprocess::RadialFlowParameters::declare_parameters(prm);
+      postprocess::FractureAreaParameters::declare_parameters(prm);
     }
 
 
@@ -52,6 +54,27 @@ namespace softsand
         throw_invalid_parameter("postprocessing/flow axis",
                                 "z",
                                 "a 2D scene flows along x or y");
+      // Radial cells: rings and fracture maps are centred on the inlet.
+      radial_flow.parse_parameters(prm);
+      fracture_area.parse_parameters(prm);
+      const auto &inlet = boundary_conditions.inlet_region();
+      if (!radial_flow.radii.empty() && !inlet.enabled())
+        throw_invalid_parameter("postprocessing/radial flow/radii",
+                                prm.get({"postprocessing", "radial flow"}, "radii"),
+                                "pressure rings are centred on the inlet: set "
+                                "boundary conditions/inlet region/type = "
+                                "cylinder");
+      if (fracture_area.enabled)
+        {
+          if (dim != 3 || !inlet.enabled() ||
+              std::abs(std::abs(inlet.axis[dim - 1]) - 1) > 1e-12)
+            throw_invalid_parameter(
+              "postprocessing/fracture area/enabled",
+              "true",
+              "the fracture map is a 3D cell between plates normal to z "
+              "around an inlet region (boundary conditions/inlet region/type "
+              "= cylinder) with axis 0, 0, 1");
+        }
     }
 
 

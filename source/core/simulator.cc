@@ -369,6 +369,7 @@ namespace softsand
           r["velocity_h1_error"] = e.velocity_h1_semi;
           r["pressure_l2_error"] = e.pressure_l2;
         }
+      hele_shaw_diagnostics(r, step, write_fields);
       r["wall_time"] = wall_clock.wall_time();
 
       // Keep the column order stable and readable.

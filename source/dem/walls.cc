@@ -46,13 +46,19 @@ namespace softsand
         "'plane px py pz nx ny nz velocity vx vy vz', "
         "'plane px py pz nx ny nz servo' (driven to the servo pressure; the "
         "normal points to the grains), "
-        "'cylinder px py pz ax ay az radius' (grains inside).");
+        "'cylinder px py pz ax ay az radius [inside|outside]' (a point on "
+        "the axis, the axis, the radius; grains inside it, the default, or "
+        "outside it: a post or the wall of an inlet).");
       prm.declare_entry(
         "octagon", "",
         Patterns::Anything(),
         "An octagon of 8 pistons (planes normal to the xy plane) of inradius "
-        "R around (cx, cy): 'cx, cy, R'; empty: none. Plates are box walls "
-        "z-, z+.");
+        "R around (cx, cy): 'cx, cy, R'; or each piston at its own distance "
+        "from the centre: 'cx, cy, R0, ..., R7' (piston k faces the "
+        "direction k pi/4 from x; a compacted pack's last statistics row "
+        "has piston_k_position = -Rk), the loaded area of each still the "
+        "side of a regular octagon of inradius R0; empty: none. Plates are "
+        "box walls z-, z+.");
       prm.declare_entry("octagon servo", "false", Patterns::Bool(),
                         "Drive the octagon's pistons to the servo pressure.");
       prm.declare_entry("servo pressure", "0", Patterns::Double(0),
@@ -77,7 +83,13 @@ namespace softsand
       box_faces = prm.get("box");
       list      = prm.get("list");
       if (!prm.get("octagon").empty())
-        octagon = core::get_double_list(prm, "octagon", 3);
+        {
+          const std::string text = prm.get("octagon");
+          const auto n_values =
+            Utilities::split_string_list(text, ',').size();
+          octagon = core::get_double_list(prm, "octagon",
+                                          n_values == 10 ? 10 : 3);
+        }
       octagon_servo           = prm.get_bool("octagon servo");
       servo_pressure          = prm.get_double("servo pressure");
       servo_max_velocity      = prm.get_double("servo max velocity");
@@ -173,10 +185,11 @@ namespace softsand
       if (!p.octagon.empty())
         {
           const double R = p.octagon[2];
-          if (!(R > 0))
-            core::throw_invalid_parameter("dem/walls/octagon",
-                                          std::to_string(R),
-                                          "the inradius must be > 0");
+          for (unsigned int k = 2; k < p.octagon.size(); ++k)
+            if (!(p.octagon[k] > 0))
+              core::throw_invalid_parameter("dem/walls/octagon",
+                                            std::to_string(p.octagon[k]),
+                                            "the inradius must be > 0");
           // Side of a regular octagon of inradius R: 2 R tan(pi/8).
           const double side = 2 * R * std::tan(M_PI / 8);
           for (unsigned int k = 0; k < 8; ++k)
@@ -186,7 +199,8 @@ namespace softsand
               outward[0] = std::cos(angle);
               outward[1] = std::sin(angle);
               Point<3> point(p.octagon[0], p.octagon[1], 0.5 * (lo[2] + hi[2]));
-              point += R * outward;
+              point += (p.octagon.size() == 10 ? p.octagon[2 + k] : R) *
+                       outward;
               Wall w = make_plane("piston_" + std::to_string(k), point, -outward);
               w.area = side * extent[2];
               if (p.octagon_servo)
@@ -212,7 +226,7 @@ namespace softsand
           for (unsigned int i = 0; i < (shape == "cylinder" ? 7u : 6u); ++i)
             if (!(in >> v[i]))
               bad("expected 'plane px py pz nx ny nz MOTION' or 'cylinder px "
-                  "py pz ax ay az radius'");
+                  "py pz ax ay az radius [inside|outside]'");
           const Point<3>     point(v[0], v[1], v[2]);
           const Tensor<1, 3> dir({v[3], v[4], v[5]});
           if (!(dir.norm() > 0))
@@ -225,6 +239,14 @@ namespace softsand
               w.radius = v[6];
               if (!(w.radius > 0))
                 bad("the cylinder radius must be > 0");
+              std::string side;
+              if (in >> side)
+                {
+                  if (side == "outside")
+                    w.outside = true;
+                  else if (side != "inside")
+                    bad("a cylinder's grains are 'inside' or 'outside' it");
+                }
               const auto [s_min, s_max] = cylinder_axis_range(w, domain);
               w.area = 2 * M_PI * w.radius * std::max(s_max - s_min, 1e-300);
               walls.push_back(w);

@@ -61,6 +61,10 @@ namespace softsand
                             "pressure: imposed pressure (Pa).");
           prm.leave_subsection();
         }
+      PressureRegion<dim>::declare_parameters(
+        prm, "inlet region", PressureRegion<dim>::Side::inside);
+      PressureRegion<dim>::declare_parameters(
+        prm, "perimeter region", PressureRegion<dim>::Side::outside);
       prm.leave_subsection();
     }
 
@@ -130,6 +134,21 @@ namespace softsand
             }
           prm.leave_subsection();
         }
+      inlet.parse_parameters(prm,
+                             "inlet region",
+                             PressureRegion<dim>::Side::inside,
+                             "boundary conditions/inlet region");
+      perimeter.parse_parameters(prm,
+                                 "perimeter region",
+                                 PressureRegion<dim>::Side::outside,
+                                 "boundary conditions/perimeter region");
+      if (inlet.enabled() && perimeter.enabled() &&
+          !(inlet.radius < perimeter.radius))
+        core::throw_invalid_parameter(
+          "boundary conditions/inlet region/radius",
+          std::to_string(inlet.radius),
+          "the inlet must be narrower than the perimeter region's cylinder "
+          "(radius " + std::to_string(perimeter.radius) + " m)");
       prm.leave_subsection();
     }
 
@@ -213,7 +232,7 @@ namespace softsand
       for (const auto &f : faces)
         if (f.type == Type::pressure)
           return true;
-      return false;
+      return has_pressure_regions();
     }
 
 

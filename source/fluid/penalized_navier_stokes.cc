@@ -193,6 +193,10 @@ namespace softsand
       boundary_conditions.make_velocity_constraints(dof_handler,
                                                     constraints,
                                                     time);
+      make_pressure_region_constraints(dof_handler,
+                                       boundary_conditions.inlet_region(),
+                                       boundary_conditions.perimeter_region(),
+                                       constraints);
       rigid_dof_grain.clear();
       hanging_rigid_parents.clear();
       if (with_solids && (rigid_nodes() || constrained_interiors()))
@@ -552,6 +556,12 @@ namespace softsand
               }
 
             const double h = cell->diameter() / std::sqrt(double(dim));
+            // A pressure region (inlet reservoir): only the pressure term
+            // -(p, div v) with the region's fixed pressure, which is the
+            // traction condition on the region's surface (PressureRegion).
+            const bool reservoir =
+              boundary_conditions.has_pressure_regions() &&
+              boundary_conditions.pressure_region(cell->center()) != nullptr;
 
             // Rigid nodes: the pressure of a cut cell acts only on the free
             // velocity nodes, so the Schur complement there is smaller than
@@ -705,9 +715,12 @@ namespace softsand
                           a = advect_i * grad_w[ci][cj] * shape_value[j];
                         if (cj < dim)
                           a += gamma * shape_grad[i][ci] * shape_grad[j][cj];
+                        if (reservoir && cj < dim)
+                          a = 0;
                         local_matrix(i, j) += a * JxW;
                       }
-                    local_rhs(i) += (f[ci] + beta_rhs[ci]) * phi * JxW;
+                    if (!reservoir)
+                      local_rhs(i) += (f[ci] + beta_rhs[ci]) * phi * JxW;
                   }
               }
 

@@ -14,6 +14,8 @@
 #include <softsand/fluid/fluid_parameters.h>
 #include <softsand/io/output_parameters.h>
 #include <softsand/postprocess/flow_diagnostics.h>
+#include <softsand/postprocess/fracture_area.h>
+#include <softsand/postprocess/radial_flow.h>
 
 #include <string>
 
@@ -39,6 +41,8 @@ namespace softsand
       io::OutputParameters                 output;
       postprocess::PostprocessingParameters postprocessing;
       ConvergenceStudyParameters           convergence_study;
+      postprocess::RadialFlowParameters     radial_flow;
+      postprocess::FractureAreaParameters   fracture_area;
 
       static void
       declare_parameters(ParameterHandler &prm);

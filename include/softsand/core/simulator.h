@@ -64,6 +64,14 @@ namespace softsand
                   const bool         write_fields,
                   const bool         finish_row = true);
 
+      /// Radial-cell (Hele-Shaw) columns into @p r: pressure rings, radial
+      /// flow rate and permeability, fracture area (with a fracture map
+      /// file when @p write_fields).
+      void
+      hele_shaw_diagnostics(std::map<std::string, double> &r,
+                            const unsigned int             step,
+                            const bool                     write_fields) const;
+
       /// The coupled CFD-DEM loop (mode = coupled; 3D).
       void
       run_coupled();

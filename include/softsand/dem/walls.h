@@ -44,8 +44,11 @@ namespace softsand
       Point<3>     point;
       /// Plane: unit normal pointing to the grains' side; cylinder: unit axis.
       Tensor<1, 3> normal;
-      /// Cylinder radius (grains inside).
+      /// Cylinder radius.
       double       radius = 0;
+      /// Cylinder: grains outside it (a post, e.g. the wall of an inlet
+      /// that keeps grains out) instead of inside (a pipe).
+      bool         outside = false;
       /// Current velocity (prescribed, or the servo's output).
       Tensor<1, 3> velocity;
 
@@ -76,6 +79,7 @@ namespace softsand
 
       /// Overlap of a sphere (centre @p x, radius @p r) with the wall and
       /// the unit normal from the wall to the sphere; overlap <= 0: apart.
+      /// Cylinders: grains inside, or outside if @p outside.
       inline double
       overlap(const Point<3> &x, const double r, Tensor<1, 3> &n) const
       {
@@ -87,7 +91,13 @@ namespace softsand
         Tensor<1, 3> radial = (x - point);
         radial -= (radial * normal) * normal;
         const double rho = radial.norm();
-        n                = (rho > 0 ? -radial / rho : Tensor<1, 3>());
+        if (outside)
+          {
+            // A grain on the axis has no outward direction: any is as good.
+            n = (rho > 0 ? radial / rho : Tensor<1, 3>());
+            return r - (rho - radius);
+          }
+        n = (rho > 0 ? -radial / rho : Tensor<1, 3>());
         return r - (radius - rho);
       }
 

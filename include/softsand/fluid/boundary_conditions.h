@@ -10,6 +10,8 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include <softsand/fluid/pressure_region.h>
+
 #include <array>
 #include <string>
 
@@ -72,8 +74,38 @@ namespace softsand
         return faces[boundary_id];
       }
 
+      /// Whether the pressure level is fixed: a pressure face or a
+      /// pressure region.
       bool
       has_pressure_face() const;
+
+      /// Reservoirs at a given pressure inside the inlet cylinder and
+      /// outside the perimeter cylinder (subsections "inlet region" and
+      /// "perimeter region"; see PressureRegion).
+      const PressureRegion<dim> &
+      inlet_region() const
+      {
+        return inlet;
+      }
+      const PressureRegion<dim> &
+      perimeter_region() const
+      {
+        return perimeter;
+      }
+      /// The pressure region containing @p cell_center (inlet first), or
+      /// nullptr.
+      const PressureRegion<dim> *
+      pressure_region(const Point<dim> &cell_center) const
+      {
+        return inlet.contains(cell_center)     ? &inlet :
+               perimeter.contains(cell_center) ? &perimeter :
+                                                 nullptr;
+      }
+      bool
+      has_pressure_regions() const
+      {
+        return inlet.enabled() || perimeter.enabled();
+      }
 
       /// The imposed velocity on a velocity / flow-rate face (for reference
       /// quantities such as the drag coefficient); zero if none.
@@ -86,6 +118,7 @@ namespace softsand
 
     private:
       std::array<Face, n_faces> faces;
+      PressureRegion<dim>       inlet, perimeter;
       BoundingBox<dim>          domain;
     };
   } // namespace fluid

@@ -259,12 +259,14 @@ namespace softsand
       bool
       use_matrix_free(const Assembly kind) const
       {
-        // The matrix-free operator has no grad-div term.
+        // The matrix-free operator has no grad-div term and does not know
+        // the pressure regions (inlet, perimeter) of the Hele-Shaw cell.
         return solver_parameters.linear_solver ==
                  SolverParameters::LinearSolver::matrix_free &&
                kind == Assembly::steady_stokes &&
                solver_parameters.grad_div == 0 &&
-               solver_parameters.grad_div_cell_factor == 0;
+               solver_parameters.grad_div_cell_factor == 0 &&
+               !boundary_conditions.has_pressure_regions();
       }
       /// Cell matrix, right-hand side and dof indices before constraints.
       using CellCallback =

@@ -1,0 +1,191 @@
+#!/usr/bin/env python3
+"""Injection sweep of the radial Hele-Shaw cell (issue 5): run one scene at
+several inlet pressures p_i, all from the same saved pack, and locate the
+critical pressure above which channels open.
+
+  python3 scripts/hele_shaw_sweep.py --pressures 500,1000,2000,4000,8000,16000
+
+runs parameters/hele_shaw_small.prm (override with --scene) with
+boundary conditions/inlet region/pressure = p_i, each in
+<workdir>/p<p_i>/, --jobs runs at a time (single-rank each, or --ranks), and
+prints a table: p_i, coupling steps and time reached, the fracture area at
+the start (the pore space next to the inlet: the grains' centres stay r + R
+from the inlet axis, so a thin open ring surrounds it) and at the end, its
+largest area during the run and its growth over the start, the radial
+permeability at the end over the start, the largest grain speed at the
+end, and the wall time. A pressure "fractures" when the largest area
+exceeds the start by more than --open-area (m^2; default half the
+projected area of a mean grain, 0.72 mm^2). The critical pressure is
+bracketed by the largest pressure that does not fracture and the smallest
+that does; their geometric mean is reported.
+
+--cells-per-diameter and --cohesion override mesh/cells per diameter and
+dem/material/cohesion energy density (refinement and cohesion studies);
+--steps overrides simulation control/max time steps. Results are also
+written to <workdir>/sweep.txt. --summarize tabulates the runs already in
+<workdir> (an unfinished run: its last statistics row) into
+<workdir>/summary.txt without running anything. Run from the repository
+root.
+"""
+import argparse
+import concurrent.futures
+import math
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import prm_tools  # noqa: E402
+
+
+def run_one(args, text, p):
+    name = 'p%g' % p
+    overrides = [('boundary conditions/inlet region/pressure', '%g' % p)]
+    if args.cells_per_diameter is not None:
+        overrides.append(('mesh/cells per diameter',
+                          '%g' % args.cells_per_diameter))
+    if args.cohesion is not None:
+        overrides.append(('dem/material/cohesion energy density',
+                          '%g' % args.cohesion))
+    if args.linear_tolerance is not None:
+        overrides.append(('fluid solver/linear tolerance',
+                          '%g' % args.linear_tolerance))
+    if args.end_time is not None:
+        overrides.append(('simulation control/end time',
+                          '%g' % args.end_time))
+    if args.steps is not None:
+        overrides.append(('simulation control/max time steps',
+                          '%d' % args.steps))
+    # As prm_tools.run, but the grains and the fracture map of the last
+    # step are written (a large output interval: the last step only).
+    for path, value in overrides:
+        text = prm_tools.set_entry(text, path, value)
+    outdir = os.path.join(args.workdir, name)
+    text = prm_tools.set_entry(text, 'output/directory', outdir)
+    text = prm_tools.set_entry(text, 'output/output interval', '100000')
+    text = prm_tools.set_entry(text, 'output/verbosity', 'quiet')
+    prm = os.path.join(args.workdir, name + '.prm')
+    os.makedirs(args.workdir, exist_ok=True)
+    with open(prm, 'w') as f:
+        f.write(text)
+    cmd = [args.softsand, prm]
+    if args.ranks > 1:
+        cmd = ['mpirun', '-np', str(args.ranks)] + cmd
+    start = time.time()
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    if proc.returncode != 0:
+        return dict(p=p, error=' '.join(proc.stderr.strip().splitlines()[-1:]),
+                    wall=time.time() - start)
+    last = prm_tools.read_statistics(outdir)[-1]
+    rows = prm_tools.read_statistics(os.path.join(args.workdir, name))
+    return dict(p=p, steps=int(last['step']), time=last['time'],
+                area0=rows[0]['fracture_area'],
+                area=last['fracture_area'],
+                area_max=max(r['fracture_area'] for r in rows),
+                k_ratio=last['radial_permeability'] /
+                rows[0]['radial_permeability'],
+                open_area=last['open_area'],
+                max_speed=last['max_speed'],
+                dofs=last['dofs'], cells=last['cells'],
+                wall=time.time() - start)
+
+
+def summarize_one(args, p):
+    """The result of a run from its statistics (also of an unfinished one:
+    its last row)."""
+    outdir = os.path.join(args.workdir, 'p%g' % p)
+    try:
+        rows = prm_tools.read_statistics(outdir)
+    except (OSError, ValueError):
+        rows = []
+    if not rows:
+        return dict(p=p, error='no statistics in ' + outdir, wall=0)
+    last = rows[-1]
+    return dict(p=p, steps=int(last['step']), time=last['time'],
+                area0=rows[0]['fracture_area'], area=last['fracture_area'],
+                area_max=max(r['fracture_area'] for r in rows),
+                k_ratio=last['radial_permeability'] /
+                rows[0]['radial_permeability'],
+                open_area=last['open_area'], max_speed=last['max_speed'],
+                dofs=last['dofs'], cells=last['cells'],
+                wall=last['wall_time'])
+
+
+def main():
+    a = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    a.add_argument('--scene', default='parameters/hele_shaw_small.prm')
+    a.add_argument('--pressures', default='500,1000,2000,4000,8000,16000',
+                   help='inlet pressures p_i (Pa), comma separated')
+    a.add_argument('--workdir', default='output/hele_shaw_sweep')
+    a.add_argument('--softsand', default='build/softsand')
+    a.add_argument('--jobs', type=int, default=2)
+    a.add_argument('--ranks', type=int, default=1)
+    a.add_argument('--cells-per-diameter', type=float, default=None)
+    a.add_argument('--cohesion', type=float, default=None)
+    a.add_argument('--steps', type=int, default=None)
+    a.add_argument('--end-time', type=float, default=None,
+                   help='simulation control/end time (s)')
+    a.add_argument('--linear-tolerance', type=float, default=None,
+                   help='fluid solver/linear tolerance (relative to the '
+                        'right-hand side); the moving cohesive pack stalls '
+                        'FGMRES near 1.3e-8 absolute, above 1e-6 relative '
+                        'for p_i <= 8 kPa')
+    a.add_argument('--summarize', action='store_true',
+                   help='do not run: tabulate the statistics already in '
+                        '<workdir> (unfinished runs: their last row)')
+    a.add_argument('--open-area', type=float,
+                   default=0.5 * math.pi / 4 * 1.35e-3 ** 2)
+    args = a.parse_args()
+    os.environ.setdefault('OMP_NUM_THREADS', '1')
+    os.environ.setdefault('DEAL_II_NUM_THREADS', '1')
+    with open(args.scene) as f:
+        text = f.read()
+    pressures = [float(p) for p in args.pressures.split(',')]
+    if args.summarize:
+        results = [summarize_one(args, p) for p in pressures]
+    else:
+        with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+            results = list(pool.map(lambda p: run_one(args, text, p),
+                                    pressures))
+    lines = ['# scene %s, cells per diameter %s, cohesion %s' %
+             (args.scene, args.cells_per_diameter, args.cohesion),
+             '# p_i[Pa] steps t_end[s] area_start[mm^2] area_end[mm^2] '
+             'area_max[mm^2] growth_max[mm^2] open_area[mm^2] K_end/K_start '
+             'max_speed[m/s] fractured dofs wall[s]']
+    below, above = None, None
+    for r in sorted(results, key=lambda r: r['p']):
+        if 'error' in r:
+            lines.append('%g FAILED %s (%.0f s)' % (r['p'], r['error'],
+                                                    r['wall']))
+            continue
+        growth = r['area_max'] - r['area0']
+        fractured = growth > args.open_area
+        if fractured and above is None:
+            above = r['p']
+        if not fractured and above is None:
+            below = r['p']
+        lines.append('%g %d %.4g %.3f %.3f %.3f %.3f %.3f %.3f %.3g %s %d %.0f'
+                     % (r['p'], r['steps'], r['time'], r['area0'] * 1e6,
+                        r['area'] * 1e6, r['area_max'] * 1e6, growth * 1e6,
+                        r['open_area'] * 1e6, r['k_ratio'], r['max_speed'],
+            'yes' if fractured else 'no', r['dofs'], r['wall']))
+    if above is not None and below is not None:
+        lines.append('# critical pressure between %g and %g Pa: %.3g Pa '
+                     '(geometric mean)' % (below, above,
+                                           math.sqrt(below * above)))
+    elif above is None:
+        lines.append('# no pressure fractured: critical pressure above %g Pa'
+                     % max(pressures))
+    else:
+        lines.append('# every pressure fractured: critical pressure below '
+                     '%g Pa' % min(pressures))
+    os.makedirs(args.workdir, exist_ok=True)
+    with open(os.path.join(args.workdir, 'summary.txt' if args.summarize
+                           else 'sweep.txt'), 'w') as f:
+        f.write('\n'.join(lines) + '\n')
+    print('\n'.join(lines))
+
+
+if __name__ == '__main__':
+    main()

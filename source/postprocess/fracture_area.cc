@@ -1,0 +1,206 @@
+#include <softsand/core/parameter_tools.h>
+#include <softsand/postprocess/fracture_area.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <fstream>
+
+namespace softsand
+{
+  namespace postprocess
+  {
+    void
+    FractureAreaParameters::declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("postprocessing");
+      prm.enter_subsection("fracture area");
+      prm.declare_entry(
+        "enabled",
+        "false",
+        Patterns::Bool(),
+        "Report the area of the open channels connected to the inlet "
+        "(statistics columns fracture_area and open_area, m^2): the grains' "
+        "solid fraction averaged across the gap between the plates (z min "
+        "and z max of the mesh box) on a pixel grid of the xy plane, "
+        "pixels below the open threshold flood-filled from the inlet "
+        "(boundary conditions/inlet region, axis along z). Writes "
+        "fracture_map-NNNNN.pgm with each field output.");
+      prm.declare_entry("pixel size",
+                        "0",
+                        Patterns::Double(0),
+                        "Pixel edge (m); 0: a quarter of the mean grain "
+                        "diameter.");
+      prm.declare_entry("open threshold",
+                        "0.25",
+                        Patterns::Double(0, 1),
+                        "A pixel is open where the gap-averaged solid "
+                        "fraction is below this (dimensionless, in (0, 1)).");
+      prm.declare_entry("samples",
+                        "4",
+                        Patterns::Integer(1, 64),
+                        "Sample points per pixel edge: a pixel's solid "
+                        "fraction is the mean over samples^2 points.");
+      prm.declare_entry("outer radius",
+                        "0",
+                        Patterns::Double(0),
+                        "Pixels farther than this from the inlet axis are "
+                        "never open (m; 0: the whole box): the grain-free "
+                        "fluid outside the pack's walls is no fracture.");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    void
+    FractureAreaParameters::parse_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("postprocessing");
+      prm.enter_subsection("fracture area");
+      enabled        = prm.get_bool("enabled");
+      pixel_size     = prm.get_double("pixel size");
+      open_threshold = prm.get_double("open threshold");
+      samples        = prm.get_integer("samples");
+      outer_radius   = prm.get_double("outer radius");
+      if (enabled && !(open_threshold > 0 && open_threshold < 1))
+        core::throw_invalid_parameter(
+          "postprocessing/fracture area/open threshold",
+          prm.get("open threshold"),
+          "a solid fraction strictly between 0 and 1");
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    FractureMap::FractureMap(const std::vector<dem::Grain<3>> &grains,
+                             const Point<2>                   &lower,
+                             const Point<2>                   &upper,
+                             const double                      z_bottom,
+                             const double                      z_top,
+                             const Point<2>                   &inlet_center,
+                             const double                      inlet_radius,
+                             const FractureAreaParameters     &parameters)
+      : origin(lower)
+    {
+      AssertThrow(z_top > z_bottom, ExcMessage("The plates must enclose a gap."));
+      pixel = parameters.pixel_size;
+      if (!(pixel > 0))
+        {
+          double sum = 0;
+          for (const auto &g : grains)
+            sum += g.diameter();
+          pixel = grains.empty() ? (upper[0] - lower[0]) / 100 :
+                                   0.25 * sum / grains.size();
+        }
+      nx = std::max(1, int(std::ceil((upper[0] - lower[0]) / pixel - 1e-9)));
+      ny = std::max(1, int(std::ceil((upper[1] - lower[1]) / pixel - 1e-9)));
+      solid.assign(nx * ny, 0.f);
+      state.assign(nx * ny, closed);
+
+      // Chords through each grain, clipped to the plates, at the sample
+      // points of the pixels under its disc.
+      const unsigned int  m    = parameters.samples;
+      const double        gap  = z_top - z_bottom;
+      const double        step = pixel / m;
+      std::vector<double> column(m * m);
+      for (const auto &g : grains)
+        {
+          const double r = g.radius;
+          const int    i0 = std::max(0, int(std::floor((g.center[0] - r - origin[0]) / pixel)));
+          const int    i1 = std::min(int(nx) - 1, int(std::floor((g.center[0] + r - origin[0]) / pixel)));
+          const int    j0 = std::max(0, int(std::floor((g.center[1] - r - origin[1]) / pixel)));
+          const int    j1 = std::min(int(ny) - 1, int(std::floor((g.center[1] + r - origin[1]) / pixel)));
+          for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i)
+              {
+                double sum = 0;
+                for (unsigned int b = 0; b < m; ++b)
+                  for (unsigned int a = 0; a < m; ++a)
+                    {
+                      const double x  = origin[0] + i * pixel + (a + 0.5) * step;
+                      const double y  = origin[1] + j * pixel + (b + 0.5) * step;
+                      const double r2 = (x - g.center[0]) * (x - g.center[0]) +
+                                        (y - g.center[1]) * (y - g.center[1]);
+                      if (r2 >= r * r)
+                        continue;
+                      const double half  = std::sqrt(r * r - r2);
+                      const double chord = std::min(g.center[2] + half, z_top) -
+                                           std::max(g.center[2] - half, z_bottom);
+                      if (chord > 0)
+                        sum += chord;
+                    }
+                // Overlapping grains count twice where they overlap (a few
+                // % of R* in settled packs); the pixel mean is capped at 1.
+                solid[j * nx + i] += float(sum / (gap * m * m));
+              }
+        }
+      for (auto &s : solid)
+        s = std::min(s, 1.f);
+
+      const double outer2 = parameters.outer_radius > 0 ?
+                              parameters.outer_radius * parameters.outer_radius :
+                              std::numeric_limits<double>::max();
+      std::deque<unsigned int> front;
+      const double             pixel_area = pixel * pixel;
+      for (unsigned int j = 0; j < ny; ++j)
+        for (unsigned int i = 0; i < nx; ++i)
+          {
+            const unsigned int k  = j * nx + i;
+            const double       dx = origin[0] + (i + 0.5) * pixel - inlet_center[0];
+            const double       dy = origin[1] + (j + 0.5) * pixel - inlet_center[1];
+            const double       d2 = dx * dx + dy * dy;
+            if (d2 < inlet_radius * inlet_radius)
+              {
+                state[k] = inlet;
+                front.push_back(k);
+              }
+            else if (d2 <= outer2 && solid[k] < parameters.open_threshold)
+              {
+                state[k] = open;
+                all_open_area += pixel_area;
+              }
+          }
+      // Flood fill from the inlet through edge-sharing open pixels.
+      while (!front.empty())
+        {
+          const unsigned int k = front.front();
+          front.pop_front();
+          const unsigned int i = k % nx, j = k / nx;
+          const auto         visit = [&](const unsigned int n) {
+            if (state[n] == open)
+              {
+                state[n] = connected;
+                area += pixel_area;
+                front.push_back(n);
+              }
+          };
+          if (i > 0)
+            visit(k - 1);
+          if (i + 1 < nx)
+            visit(k + 1);
+          if (j > 0)
+            visit(k - nx);
+          if (j + 1 < ny)
+            visit(k + nx);
+        }
+    }
+
+
+    void
+    FractureMap::write_pgm(const std::string &filename) const
+    {
+      std::ofstream out(filename, std::ios::binary);
+      out << "P5\n" << nx << ' ' << ny << "\n255\n";
+      std::vector<unsigned char> row(nx);
+      for (unsigned int j = ny; j-- > 0;)
+        {
+          for (unsigned int i = 0; i < nx; ++i)
+            row[i] = state[j * nx + i] == connected ?
+                       255 :
+                       static_cast<unsigned char>(
+                         std::lround(200 * solid[j * nx + i]));
+          out.write(reinterpret_cast<const char *>(row.data()), nx);
+        }
+    }
+  } // namespace postprocess
+} // namespace softsand
