@@ -561,13 +561,7 @@ namespace softsand
       catch (const SolverControl::NoConvergence &e)
         {
           AssertThrow(false,
-                      ExcMessage(
-                        "The fluid solver (FGMRES) did not converge in " +
-                        std::to_string(e.last_step) + " iterations (residual " +
-                        Utilities::to_string(e.last_residual) + " vs " +
-                        Utilities::to_string(control.tolerance()) +
-                        "). Raise 'fluid solver/max linear iterations' or "
-                        "check the scene (time step, theta, mesh)."));
+                      ExcMessage(linear_solver_failure(e, control.tolerance())));
         }
 
       BlockVector x(owned_partitioning, mpi_communicator);
@@ -575,22 +569,7 @@ namespace softsand
         std::copy(delta.block(b).begin(),
                   delta.block(b).end(),
                   x.block(b).begin());
-      constraints.distribute(x);
-      if (!boundary_conditions.has_pressure_face())
-        {
-          // Pressure is defined up to a constant: report zero mean.
-          solution          = x;
-          const double mean = VectorTools::compute_mean_value(
-            dof_handler, QGauss<dim>(fe.degree + 1), solution, dim);
-          x.block(1).add(-mean);
-        }
-      solution = x;
-
-      AssertThrow(std::isfinite(x.l2_norm()),
-                  ExcMessage("The fluid solution is not finite (NaN or Inf)."));
-      statistics.linear_iterations = control.last_step();
-      statistics.total_linear_iterations += control.last_step();
-      return control.last_step();
+      return accept_linear_solution(x, control.last_step());
     }
 
     template void

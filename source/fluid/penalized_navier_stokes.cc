@@ -859,21 +859,39 @@ namespace softsand
       catch (const SolverControl::NoConvergence &e)
         {
           AssertThrow(false,
-                      ExcMessage(
-                        "The fluid solver (FGMRES) did not converge in " +
-                        std::to_string(e.last_step) +
-                        " iterations (residual " +
-                        Utilities::to_string(e.last_residual) + " vs " +
-                        Utilities::to_string(control.tolerance()) +
-                        "). Raise 'fluid solver/max linear iterations' or "
-                        "check the scene (time step, theta, mesh)."));
+                      ExcMessage(linear_solver_failure(e, control.tolerance())));
         }
-      constraints.distribute(x);
+      // A zero right-hand side (fluid and grains at rest) needs no solve.
+      return accept_linear_solution(x, rhs_norm > 0 ? control.last_step() : 0);
+    }
 
+
+    template <int dim>
+    std::string
+    PenalizedNavierStokes<dim>::linear_solver_failure(
+      const SolverControl::NoConvergence &e,
+      const double                        tolerance)
+    {
+      return "The fluid solver (FGMRES) did not converge in " +
+             std::to_string(e.last_step) + " iterations (residual " +
+             Utilities::to_string(e.last_residual) + " vs " +
+             Utilities::to_string(tolerance) +
+             "). Raise 'fluid solver/max linear iterations' or check the "
+             "scene (time step, theta, mesh).";
+    }
+
+
+    template <int dim>
+    unsigned int
+    PenalizedNavierStokes<dim>::accept_linear_solution(
+      BlockVector       &x,
+      const unsigned int iterations)
+    {
+      constraints.distribute(x);
       if (!boundary_conditions.has_pressure_face())
         {
           // Pressure is defined up to a constant: report zero mean.
-          solution = x;
+          solution          = x;
           const double mean = VectorTools::compute_mean_value(
             dof_handler, QGauss<dim>(fe.degree + 1), solution, dim);
           x.block(1).add(-mean);
@@ -882,8 +900,6 @@ namespace softsand
 
       AssertThrow(std::isfinite(x.l2_norm()),
                   ExcMessage("The fluid solution is not finite (NaN or Inf)."));
-      // A zero right-hand side (fluid and grains at rest) needs no solve.
-      const unsigned int iterations = rhs_norm > 0 ? control.last_step() : 0;
       statistics.linear_iterations = iterations;
       statistics.total_linear_iterations += iterations;
       return iterations;

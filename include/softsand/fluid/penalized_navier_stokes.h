@@ -16,6 +16,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 
@@ -321,6 +322,15 @@ namespace softsand
       }
       unsigned int
       solve_linear(const bool convection);
+      /// The message of an FGMRES that did not converge, for both paths.
+      static std::string
+      linear_solver_failure(const SolverControl::NoConvergence &e,
+                            const double                       tolerance);
+      /// Shared tail of both linear solves: distribute the constraints into
+      /// @p x, zero the mean pressure where no face fixes it, store it as
+      /// the solution, check it is finite and count @p iterations.
+      unsigned int
+      accept_linear_solution(BlockVector &x, const unsigned int iterations);
       /// Call @p cell_action with the FEValues (Gauss points, @p flags) and
       /// the solid field of each locally owned cell with a covered point.
       void
