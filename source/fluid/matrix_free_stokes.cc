@@ -255,13 +255,7 @@ namespace softsand
 
         // The same coefficients as assemble(): beta, the right-hand side
         // f + beta u_s, and the Schur weights.
-        double domain_size = 0;
-        {
-          const auto box = GridTools::compute_bounding_box(triangulation);
-          for (unsigned int d = 0; d < dim; ++d)
-            domain_size = std::max(domain_size, box.side_length(d));
-        }
-        const double beta_floor = mu / (domain_size * domain_size);
+        const double beta_floor = viscous_beta_floor();
 
         const QGauss<dim>                quadrature(fe.degree + 1);
         const QGauss<dim - 1>            face_quadrature(fe.degree + 1);

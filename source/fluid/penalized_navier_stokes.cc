@@ -465,15 +465,7 @@ namespace softsand
       const double grad_div_cell_factor =
         solver_parameters.grad_div_cell_factor;
 
-      // The pressure-Laplacian coefficient 1/beta is capped where beta -> 0
-      // (steady pure fluid) by the viscous scale mu / L^2 of the domain.
-      double domain_size = 0;
-      {
-        const auto box = GridTools::compute_bounding_box(triangulation);
-        for (unsigned int d = 0; d < dim; ++d)
-          domain_size = std::max(domain_size, box.side_length(d));
-      }
-      const double beta_floor = mu / (domain_size * domain_size);
+      const double beta_floor = viscous_beta_floor();
 
       const QGauss<dim>     quadrature(fe.degree + 1);
       const QGauss<dim - 1> face_quadrature(fe.degree + 1);
@@ -863,6 +855,18 @@ namespace softsand
         }
       // A zero right-hand side (fluid and grains at rest) needs no solve.
       return accept_linear_solution(x, rhs_norm > 0 ? control.last_step() : 0);
+    }
+
+
+    template <int dim>
+    double
+    PenalizedNavierStokes<dim>::viscous_beta_floor() const
+    {
+      double domain_size = 0;
+      const auto box = GridTools::compute_bounding_box(triangulation);
+      for (unsigned int d = 0; d < dim; ++d)
+        domain_size = std::max(domain_size, box.side_length(d));
+      return fluid_parameters.viscosity / (domain_size * domain_size);
     }
 
 

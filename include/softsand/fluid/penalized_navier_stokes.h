@@ -322,6 +322,11 @@ namespace softsand
       }
       unsigned int
       solve_linear(const bool convection);
+      /// The pressure-Laplacian coefficient 1/beta of the Schur
+      /// approximation is capped where beta -> 0 (steady pure fluid) by
+      /// this viscous scale mu / L^2 of the domain (both solve paths).
+      double
+      viscous_beta_floor() const;
       /// The message of an FGMRES that did not converge, for both paths.
       static std::string
       linear_solver_failure(const SolverControl::NoConvergence &e,
