@@ -546,7 +546,8 @@ namespace softsand
         data.pressure_mass_ilu,
         laplace ? &data.pressure_laplace_amg : nullptr);
       SolverFGMRES<BlockVectorType> solver(
-        control, typename SolverFGMRES<BlockVectorType>::AdditionalData(100));
+        control, typename SolverFGMRES<BlockVectorType>::AdditionalData(
+          solver_parameters.krylov_restart));
       try
         {
           if (rhs_norm > 0)

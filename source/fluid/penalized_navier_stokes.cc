@@ -798,7 +798,9 @@ namespace softsand
         solver_parameters.velocity_amg_smoother ==
             SolverParameters::AmgSmoother::chebyshev ?
           "Chebyshev" :
-          "symmetric Gauss-Seidel");
+          "symmetric Gauss-Seidel",
+        solver_parameters.schur == SolverParameters::Schur::discrete_brinkman,
+        solver_parameters.schur_inner_tolerance);
 
       BlockVector x(owned_partitioning, mpi_communicator);
       x = solution; // start from the previous state: cheap re-solves
@@ -842,7 +844,8 @@ namespace softsand
       // A well-posed singular system (no pressure face) is consistent:
       // FGMRES converges in the complement of the constant pressure.
       SolverFGMRES<BlockVector> solver(
-        control, SolverFGMRES<BlockVector>::AdditionalData(100));
+        control, SolverFGMRES<BlockVector>::AdditionalData(
+          solver_parameters.krylov_restart));
       try
         {
           if (rhs_norm > 0)

@@ -30,6 +30,17 @@ namespace softsand
      * not a mass matrix. M is applied by ILU(0), L by one AMG V-cycle. Without
      * the Laplacian it is the plain (or weighted) pressure-mass
      * preconditioner.
+     *
+     * With @p discrete_brinkman_schur, L is instead the discrete
+     * B D^-1 B^T with D = diag(A) (viscous + penalty + inertia; a sparse
+     * triple product), inverted by CG with AMG to a relative inner
+     * tolerance. In a dense pack the continuous L_(1/beta), weighted per
+     * quadrature point, lets pressure "flow" through cut cells that the
+     * assembled A closes: FGMRES needed 2,453 iterations on a 13-grain piece
+     * of the Fig. 3 pack, 92 with this (doc/validation.md). One AMG V-cycle
+     * on B D^-1 B^T is not enough there (1,768): the contrast of D (1e11)
+     * needs the inner CG. D with the penalty alone (no viscous part) gave
+     * 572.
      */
     class BlockSchurPreconditioner : public Subscriptor
     {
@@ -46,7 +57,9 @@ namespace softsand
         const std::vector<std::vector<bool>>      &velocity_constant_modes,
         const bool                                 convection,
         const unsigned int                         amg_sweeps,
-        const std::string &velocity_smoother = "Chebyshev");
+        const std::string &velocity_smoother = "Chebyshev",
+        const bool   discrete_brinkman_schur = false,
+        const double inner_tolerance         = 1e-4);
 
       void
       vmult(BlockVector &dst, const BlockVector &src) const;
@@ -59,6 +72,9 @@ namespace softsand
       TrilinosWrappers::PreconditionILU          pressure_mass_ilu;
       TrilinosWrappers::PreconditionAMG          pressure_laplace_amg;
       bool                                       use_laplace;
+      /// B D^-1 B^T when a Brinkman diagonal is given (else empty).
+      TrilinosWrappers::SparseMatrix             discrete_brinkman;
+      const double                               inner_tolerance;
       mutable TrilinosWrappers::MPI::Vector      tmp_u, tmp_p;
     };
   } // namespace fluid

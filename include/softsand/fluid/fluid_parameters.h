@@ -60,6 +60,7 @@ namespace softsand
       enum class Schur
       {
         cahouet_chabard,
+        discrete_brinkman,
         weighted_mass,
         mass
       };
@@ -74,7 +75,12 @@ namespace softsand
       unsigned int max_nonlinear_iterations = 30;
       double       linear_tolerance         = 1e-8;
       unsigned int max_linear_iterations    = 1000;
+      /// Krylov vectors kept by FGMRES before it restarts.
+      unsigned int krylov_restart           = 100;
       Schur        schur                    = Schur::cahouet_chabard;
+      /// schur = discrete brinkman: relative tolerance of the inner CG on
+      /// B D^-1 B^T.
+      double       schur_inner_tolerance    = 1e-4;
       unsigned int velocity_amg_sweeps      = 2;
       /// Smoother of the velocity-block AMG (an ML smoother type).
       enum class AmgSmoother

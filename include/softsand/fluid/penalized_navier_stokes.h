@@ -265,6 +265,8 @@ namespace softsand
         return solver_parameters.linear_solver ==
                  SolverParameters::LinearSolver::matrix_free &&
                kind == Assembly::steady_stokes &&
+               solver_parameters.schur !=
+                 SolverParameters::Schur::discrete_brinkman &&
                solver_parameters.grad_div == 0 &&
                solver_parameters.grad_div_cell_factor == 0 &&
                !boundary_conditions.has_pressure_regions();
