@@ -47,6 +47,18 @@ namespace softsand
         , dof_handler_velocity(tria)
         , dof_handler_pressure(tria)
     {
+      // B diag(A)^-1 B^T has empty rows for pressure nodes whose velocity
+      // nodes are all rigid (grain interiors): that Schur block is built for
+      // the penalty, where those rows carry 1/beta.
+      AssertThrow(
+        !(solver_parameters.schur ==
+            SolverParameters::Schur::discrete_brinkman &&
+          (fluid_parameters.solid_model ==
+             FluidParameters::SolidModel::rigid_nodes ||
+           fluid_parameters.constrain_grain_interiors)),
+        ExcMessage("'fluid solver/schur complement = discrete brinkman' needs "
+                   "'fluid/solid model = penalization' without constrained "
+                   "grain interiors; use 'cahouet chabard' with rigid nodes."));
       body_force = std::make_unique<FunctionParser<dim>>(dim);
       std::string expr = fluid_parameters.body_force;
       // Accept a 3-component default in 2D by dropping the z component.
