@@ -74,6 +74,8 @@ def main():
     ap.add_argument('--steps', type=int, default=6)
     ap.add_argument('--dt', type=float, default=1e-4, help='transient fluid step (s)')
     ap.add_argument('--solid-model', default='rigid nodes')
+    ap.add_argument('--schur', default='cahouet chabard',
+                    help='fluid solver/schur complement')
     ap.add_argument('--force-model', default='penalization reaction')
     ap.add_argument('--tolerance', default='1e-5',
                     help='FGMRES tolerance: with rigid nodes on settling grains in '
@@ -102,6 +104,7 @@ def main():
                         ('coupling/fluid model', model),
                         ('fluid/solid model', a.solid_model),
                         ('fluid solver/linear tolerance', a.tolerance),
+                        ('fluid solver/schur complement', a.schur),
                         ('coupling/force model', a.force_model),
                         ('dem/save pack', 'final_pack.txt')]
                 row, wall, err = prm_tools.run(SOFTSAND, SCENE, a.workdir, name, ranks, over)

@@ -24,12 +24,15 @@ def main():
     ap.add_argument('--n', default='4,8')
     ap.add_argument('--c', default='0.216,0.343,0.45')
     ap.add_argument('--solid-model', default='rigid nodes')
+    ap.add_argument('--schur', default='cahouet chabard',
+                    help="fluid solver/schur complement ('discrete brinkman' "
+                         "for near-touching grains, with penalization)")
     ap.add_argument('--workdir', default='output/study_permeability')
     a = ap.parse_args()
     base = open(os.path.join(ROOT, 'parameters', 'sc_permeability.prm')).read()
     softsand = os.path.join(ROOT, 'build', 'softsand')
     s, mu, U = 2e-4, 1e-3, 1e-4
-    print('Solid model: %s\n' % a.solid_model)
+    print('Solid model: %s, Schur complement: %s\n' % (a.solid_model, a.schur))
     print('| c | N | cells | DoFs | iterations | wall [s] | K [m^2] | '
           'K Zick-Homsy | error | K Kozeny-Carman |')
     print('|---|---|---|---|---|---|---|---|---|---|')
@@ -44,7 +47,8 @@ def main():
                 softsand, base, a.workdir, 'c%g_n%g' % (c, n), 1,
                 [('grains/diameter', '%.6g' % d),
                  ('mesh/cells per diameter', '%g' % n),
-                 ('fluid/solid model', a.solid_model)])
+                 ('fluid/solid model', a.solid_model),
+                 ('fluid solver/schur complement', a.schur)])
             if row is None:
                 print('| %g | %g | failed: %s |' % (c, n, err))
                 continue

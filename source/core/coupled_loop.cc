@@ -406,6 +406,18 @@ namespace softsand
 
               // The grains' side of the statistics row.
               const dem::GranularStatistics s = dem->statistics(domain);
+              // A diverged exchange (fluid forces growing step by step)
+              // ends here, before a row of NaN is written.
+              AssertThrow(std::isfinite(s.kinetic_energy) &&
+                            std::isfinite(s.max_speed),
+                          ExcMessage(
+                            "The coupled run diverged at t = " +
+                            Utilities::to_string(time) +
+                            " s: the grains' kinetic energy is not finite "
+                            "(the fluid force on the grains grew without "
+                            "bound). Lower 'simulation control/time step' or "
+                            "use 'coupling/fluid model = quasi-steady' with "
+                            "'fluid/solid model = rigid nodes'."));
               statistics->add_value("coupling_time_step", dt);
               statistics->add_value("grains", s.n_grains);
               statistics->add_value("kinetic_energy", s.kinetic_energy);
