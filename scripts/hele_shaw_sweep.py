@@ -24,7 +24,8 @@ dem/material/cohesion energy density (refinement and cohesion studies);
 --steps overrides simulation control/max time steps. Results are also
 written to <workdir>/sweep.txt. --summarize tabulates the runs already in
 <workdir> (an unfinished run: its last statistics row) into
-<workdir>/summary.txt without running anything. Run from the repository
+<workdir>/summary.txt without running anything. Each run also saves its
+last grains in <workdir>/p<p_i>/pack_end.txt. Run from the repository
 root.
 """
 import argparse
@@ -58,7 +59,10 @@ def run_one(args, text, p):
         overrides.append(('simulation control/max time steps',
                           '%d' % args.steps))
     # As prm_tools.run, but the grains and the fracture map of the last
-    # step are written (a large output interval: the last step only).
+    # step are written (a large output interval: the last step only), and
+    # the grains at the end in <outdir>/pack_end.txt (dem/save pack: the
+    # pack file's order, for scripts/plot_hele_shaw_grains.py).
+    overrides.append(('dem/save pack', 'pack_end.txt'))
     for path, value in overrides:
         text = prm_tools.set_entry(text, path, value)
     outdir = os.path.join(args.workdir, name)
