@@ -94,6 +94,9 @@ def main():
     ap.add_argument('study', choices=['refinement', 'porosity'])
     ap.add_argument('--n', default=None)
     ap.add_argument('--packs', type=int, default=10)
+    ap.add_argument('--first', type=int, default=0,
+                    help='porosity study: start at this pack (0-based), to '
+                         'split the series over processes')
     ap.add_argument('--workdir', default=os.path.join(ROOT, 'output/study_pack_permeability'))
     a = ap.parse_args()
     print('| pack (d, friction, p) | N | cells | DoFs | FGMRES | wall (s) | K (m^2) | '
@@ -103,7 +106,7 @@ def main():
         packs = PACKS[:1]
         ns = (a.n or '4,6,8').split(',')
     else:
-        packs = PACKS[:a.packs]
+        packs = PACKS[a.first:a.first + a.packs]
         ns = (a.n or '6').split(',')
     for d, friction, pressure, seed in packs:
         pack, height, thickness = make_pack(a.workdir, d, friction, pressure, seed)
