@@ -16,6 +16,7 @@ paper's fraction of cells with vf > 0.9, and the exact void volume.
   python3 scripts/study_pack_permeability.py porosity [--n 6] [--packs 10]
 """
 import argparse
+import math
 import os
 import re
 import subprocess
@@ -67,7 +68,6 @@ def make_pack(workdir, d, friction, pressure, seed):
 
 
 def pack_porosity(pack, height, thickness):
-    import math
     solid = 0.0
     for line in open(pack):
         if line.strip() and not line.startswith('#'):

@@ -8,6 +8,83 @@ namespace softsand
 {
   namespace fluid
   {
+    namespace
+    {
+      /// B diag(A)^-1 B^T of the assembled saddle-point matrix, with a
+      /// regular diagonal on every row.
+      void
+      build_discrete_brinkman(
+        const TrilinosWrappers::BlockSparseMatrix &system_matrix,
+        TrilinosWrappers::SparseMatrix            &discrete_brinkman)
+      {
+        const auto                   &a = system_matrix.block(0, 0);
+        TrilinosWrappers::MPI::Vector inverse(a.locally_owned_domain_indices(),
+                                              a.get_mpi_communicator());
+        for (const auto i : inverse.locally_owned_elements())
+          {
+            const double d = a.diag_element(i);
+            inverse(i)     = d > 0 ? 1. / d : 0.;
+          }
+        inverse.compress(VectorOperation::insert);
+        // The divergence rows times D^-1 times the gradient columns (the
+        // blocks carry the same sign).
+        TrilinosWrappers::SparseMatrix product;
+        system_matrix.block(1, 0).mmult(product,
+                                        system_matrix.block(0, 1),
+                                        inverse);
+        // Constrained (hanging) pressure nodes have empty B rows: add the
+        // pressure block, which holds their constraint diagonal, then give
+        // zero diagonals the mean, so that AMG and CG see a regular matrix
+        // (these values are overwritten by the constraints).
+        {
+          Epetra_CrsMatrix *sum  = nullptr;
+          const int         ierr = EpetraExt::MatrixMatrix::Add(
+            product.trilinos_matrix(),
+            false,
+            1.,
+            system_matrix.block(1, 1).trilinos_matrix(),
+            false,
+            1.,
+            sum);
+          AssertThrow(ierr == 0 && sum != nullptr,
+                      ExcMessage("EpetraExt could not add the pressure block "
+                                 "to B D^-1 B^T."));
+          sum->FillComplete(product.trilinos_matrix().DomainMap(),
+                            product.trilinos_matrix().RangeMap());
+          discrete_brinkman.reinit(*sum);
+          delete sum;
+        }
+        double     sum = 0, count = 0;
+        const auto range = discrete_brinkman.local_range();
+        for (auto i = range.first; i < range.second; ++i)
+          if (discrete_brinkman.diag_element(i) > 0)
+            {
+              sum += discrete_brinkman.diag_element(i);
+              ++count;
+            }
+        const MPI_Comm comm = discrete_brinkman.get_mpi_communicator();
+        const double   mean = Utilities::MPI::sum(sum, comm) /
+                            std::max(1., Utilities::MPI::sum(count, comm));
+        for (auto i = range.first; i < range.second; ++i)
+          if (!(discrete_brinkman.diag_element(i) > 0))
+            discrete_brinkman.set(i, i, mean);
+        discrete_brinkman.compress(VectorOperation::insert);
+      }
+    } // namespace
+
+
+    TrilinosWrappers::PreconditionAMG::AdditionalData
+    pressure_laplace_amg_data()
+    {
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.higher_order_elements = false;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      return data;
+    }
+
+
     BlockSchurPreconditioner::BlockSchurPreconditioner(
       const TrilinosWrappers::BlockSparseMatrix &system_matrix,
       const TrilinosWrappers::BlockSparseMatrix &pressure_mass_matrix,
@@ -37,66 +114,10 @@ namespace softsand
       pressure_mass_ilu.initialize(pressure_mass_matrix.block(1, 1));
       if (use_laplace)
         {
-          TrilinosWrappers::PreconditionAMG::AdditionalData data;
-          data.elliptic              = true;
-          data.higher_order_elements = false;
-          data.smoother_sweeps       = 2;
-          data.aggregation_threshold = 0.02;
+          const auto data = pressure_laplace_amg_data();
           if (discrete_brinkman_schur)
             {
-              const auto &a = system_matrix.block(0, 0);
-              TrilinosWrappers::MPI::Vector inverse(
-                a.locally_owned_domain_indices(), a.get_mpi_communicator());
-              for (const auto i : inverse.locally_owned_elements())
-                {
-                  const double d = a.diag_element(i);
-                  inverse(i)     = d > 0 ? 1. / d : 0.;
-                }
-              inverse.compress(VectorOperation::insert);
-              // B D^-1 B^T: the divergence rows times D^-1 times the
-              // gradient columns (the blocks carry the same sign).
-              TrilinosWrappers::SparseMatrix product;
-              system_matrix.block(1, 0).mmult(product,
-                                              system_matrix.block(0, 1),
-                                              inverse);
-              // Constrained (hanging) pressure nodes have empty B rows: add
-              // the pressure block, which holds their constraint diagonal,
-              // then give zero diagonals the mean, so that AMG and CG see
-              // a regular matrix (these values are overwritten by the
-              // constraints).
-              {
-                Epetra_CrsMatrix *sum = nullptr;
-                const int         ierr = EpetraExt::MatrixMatrix::Add(
-                  product.trilinos_matrix(),
-                  false,
-                  1.,
-                  system_matrix.block(1, 1).trilinos_matrix(),
-                  false,
-                  1.,
-                  sum);
-                AssertThrow(ierr == 0 && sum != nullptr,
-                            ExcMessage("EpetraExt could not add the pressure "
-                                       "block to B D^-1 B^T."));
-                sum->FillComplete(product.trilinos_matrix().DomainMap(),
-                                  product.trilinos_matrix().RangeMap());
-                discrete_brinkman.reinit(*sum);
-                delete sum;
-              }
-              double       sum = 0, count = 0;
-              const auto   range = discrete_brinkman.local_range();
-              for (auto i = range.first; i < range.second; ++i)
-                if (discrete_brinkman.diag_element(i) > 0)
-                  {
-                    sum += discrete_brinkman.diag_element(i);
-                    ++count;
-                  }
-              const MPI_Comm comm = discrete_brinkman.get_mpi_communicator();
-              const double   mean = Utilities::MPI::sum(sum, comm) /
-                                  std::max(1., Utilities::MPI::sum(count, comm));
-              for (auto i = range.first; i < range.second; ++i)
-                if (!(discrete_brinkman.diag_element(i) > 0))
-                  discrete_brinkman.set(i, i, mean);
-              discrete_brinkman.compress(VectorOperation::insert);
+              build_discrete_brinkman(system_matrix, discrete_brinkman);
               pressure_laplace_amg.initialize(discrete_brinkman, data);
             }
           else
@@ -122,7 +143,8 @@ namespace softsand
               // A preconditioner may be inexact (FGMRES): an inner solve
               // that stops at its bound (nearly closed pores make B D^-1 B^T
               // nearly singular) still returns its last iterate.
-              ReductionControl control(200, 1e-300, inner_tolerance, false, false);
+              ReductionControl control(
+                200, 1e-300, inner_tolerance, false, false);
               SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
               tmp_p = 0;
               try

@@ -132,8 +132,8 @@ namespace softsand
         "block, solved by CG + AMG to 'schur inner tolerance' (dense "
         "packs: a pore closed by grains stays closed in D, where the "
         "quadrature-point Laplacian leaks through cut cells; switches to "
-        "the matrix-based solver); weighted mass = mass matrix weighted by 1/(mu + "
-        "beta h^2); mass = 1/mu mass matrix (plain Stokes).");
+        "the matrix-based solver); weighted mass = mass matrix weighted "
+        "by 1/(mu + beta h^2); mass = 1/mu mass matrix (plain Stokes).");
       prm.declare_entry("schur inner tolerance",
                         "1e-4",
                         Patterns::Double(1e-12, 0.5),
@@ -218,11 +218,11 @@ namespace softsand
       max_linear_iterations    = prm.get_integer("max linear iterations");
       krylov_restart           = prm.get_integer("krylov restart");
       const std::string s      = prm.get("schur complement");
-      schur_inner_tolerance    = prm.get_double("schur inner tolerance");
       schur = s == "cahouet chabard"   ? Schur::cahouet_chabard :
               s == "discrete brinkman" ? Schur::discrete_brinkman :
               s == "weighted mass"     ? Schur::weighted_mass :
                                        Schur::mass;
+      schur_inner_tolerance = prm.get_double("schur inner tolerance");
       velocity_amg_sweeps = prm.get_integer("velocity amg sweeps");
       velocity_amg_smoother = prm.get("velocity amg smoother") == "chebyshev" ?
                                 AmgSmoother::chebyshev :

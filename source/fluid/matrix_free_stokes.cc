@@ -22,6 +22,7 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include <softsand/fluid/block_schur_preconditioner.h>
 #include <softsand/fluid/matrix_free_operators.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 #include <softsand/fluid/velocity_multigrid.h>
@@ -506,13 +507,8 @@ namespace softsand
         data.pressure_mass_ilu.initialize(data.pressure_mass);
         if (laplace)
           {
-            TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
-            amg_data.elliptic              = true;
-            amg_data.higher_order_elements = false;
-            amg_data.smoother_sweeps       = 2;
-            amg_data.aggregation_threshold = 0.02;
             data.pressure_laplace_amg.initialize(data.pressure_laplace,
-                                                 amg_data);
+                                                 pressure_laplace_amg_data());
           }
       }
 

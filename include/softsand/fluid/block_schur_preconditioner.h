@@ -42,6 +42,11 @@ namespace softsand
      * needs the inner CG. D with the penalty alone (no viscous part) gave
      * 572.
      */
+    /// AMG settings of the pressure Laplacian of the Schur approximation
+    /// (shared by the matrix-based and the matrix-free solves).
+    TrilinosWrappers::PreconditionAMG::AdditionalData
+    pressure_laplace_amg_data();
+
     class BlockSchurPreconditioner : public Subscriptor
     {
     public:
@@ -72,7 +77,7 @@ namespace softsand
       TrilinosWrappers::PreconditionILU          pressure_mass_ilu;
       TrilinosWrappers::PreconditionAMG          pressure_laplace_amg;
       bool                                       use_laplace;
-      /// B D^-1 B^T when a Brinkman diagonal is given (else empty).
+      /// B diag(A)^-1 B^T with discrete_brinkman_schur (else empty).
       TrilinosWrappers::SparseMatrix             discrete_brinkman;
       const double                               inner_tolerance;
       mutable TrilinosWrappers::MPI::Vector      tmp_u, tmp_p;
