@@ -204,6 +204,36 @@ namespace softsand
     }
 
 
+    template <int dim>
+    unsigned int
+    GrainSolidField<dim>::n_solids_near(const CellAccessor<dim, dim> &cell,
+                                        const double reach) const
+    {
+      BoundingBox<dim> box = cell.bounding_box();
+      box.extend(reach);
+      std::vector<unsigned int> near;
+      grain_locator.grains_near_box(box, near);
+      const auto &lo = box.get_boundary_points().first;
+      const auto &hi = box.get_boundary_points().second;
+      unsigned int n = 0;
+      for (const unsigned int k : near)
+        {
+          // Distance from the centre to the grown box against the radius.
+          double distance_squared = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double x = grains[k].center[d];
+              const double gap =
+                x < lo[d] ? lo[d] - x : (x > hi[d] ? x - hi[d] : 0.);
+              distance_squared += gap * gap;
+            }
+          if (distance_squared < grains[k].radius * grains[k].radius && ++n == 2)
+            break;
+        }
+      return n;
+    }
+
+
     template class GrainSolidField<2>;
     template class GrainSolidField<3>;
   } // namespace coupling

@@ -52,6 +52,20 @@ namespace softsand
         "wholly inside a grain to its rigid velocity (the Theta -> infinity "
         "limit there) so that the penalty acts in cut cells only; false: "
         "penalize every covered cell as in the paper.");
+      prm.declare_entry(
+        "free contact cells",
+        "automatic",
+        Patterns::Selection("automatic|true|false"),
+        "Leave to the fluid (void fraction 1, no imposed grain velocity) the "
+        "cells that touch a wall with an imposed velocity and the cells "
+        "within one cell of two grains. There the rigid motions the solids "
+        "impose conflict (a grain moving into or along a no-slip wall, two "
+        "touching grains moving apart), and the solid model turns the "
+        "conflict into a fictitious force of order rho Theta / dt times the "
+        "relative velocity; the free layer carries a resolved lubrication "
+        "flow instead, and the contact itself is the DEM's. automatic: true "
+        "when the grains move (coupled runs), false for fixed grains "
+        "(permeability: contacts stay closed).");
       prm.declare_entry("body force",
                         "0; 0; 0",
                         Patterns::Anything(),
@@ -71,6 +85,11 @@ namespace softsand
       body_force = prm.get("body force");
       rigid_node_offset = prm.get_double("rigid node offset");
       constrain_grain_interiors = prm.get_bool("constrain grain interiors");
+      const std::string free_contact = prm.get("free contact cells");
+      free_contact_cells = free_contact == "automatic" ?
+                             FreeContactCells::automatic :
+                             (free_contact == "true" ? FreeContactCells::yes :
+                                                       FreeContactCells::no);
       solid_model = prm.get("solid model") == "rigid nodes" ?
                       SolidModel::rigid_nodes :
                       SolidModel::penalization;

@@ -309,7 +309,7 @@ namespace softsand
                 pressure_values.reinit(cell_p);
                 const auto &points = pressure_values.get_quadrature_points();
                 if (solid_field != nullptr && !rigid_nodes())
-                  solid_field->evaluate(*cell_p,
+                  evaluate_solids(*cell_p,
                                         points,
                                         void_fraction,
                                         solid_velocity,
@@ -489,7 +489,7 @@ namespace softsand
             std::vector<double>         vf;
             std::vector<Tensor<1, dim>> u_s;
             std::vector<int>            index;
-            solid_field->evaluate(cell, points, vf, u_s, index);
+            evaluate_solids(cell, points, vf, u_s, index);
             for (unsigned int q = 0; q < points.size(); ++q)
               beta[q] = brinkman_coefficient(vf[q], dt);
           };

@@ -103,6 +103,67 @@ namespace softsand
 
     template <int dim>
     void
+    PenalizedNavierStokes<dim>::find_velocity_wall_vertices()
+    {
+      velocity_wall_vertex.assign(triangulation.n_vertices(), false);
+      using BC = BoundaryConditions<dim>;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (!cell->is_artificial())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                cell->face(f)->boundary_id() < BC::n_faces &&
+                boundary_conditions.face(cell->face(f)->boundary_id()).type !=
+                  BC::Type::pressure)
+              for (const auto v : cell->face(f)->vertex_indices())
+                velocity_wall_vertex[cell->face(f)->vertex_index(v)] = true;
+    }
+
+
+    template <int dim>
+    bool
+    PenalizedNavierStokes<dim>::is_free_contact_cell(
+      const CellAccessor<dim, dim> &cell) const
+    {
+      using F = FluidParameters::FreeContactCells;
+      const bool free_contacts =
+        fluid_parameters.free_contact_cells == F::yes ||
+        (fluid_parameters.free_contact_cells == F::automatic && moving_solids);
+      if (!free_contacts || solid_field == nullptr)
+        return false;
+      for (const auto v : cell.vertex_indices())
+        if (cell.vertex_index(v) < velocity_wall_vertex.size() &&
+            velocity_wall_vertex[cell.vertex_index(v)])
+          return true;
+      return solid_field->n_solids_near(cell, cell.minimum_vertex_distance()) >=
+             2;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::evaluate_solids(
+      const CellAccessor<dim, dim> &cell,
+      const std::vector<Point<dim>>  &points,
+      std::vector<double>            &void_fraction,
+      std::vector<Tensor<1, dim>>    &solid_velocity,
+      std::vector<int>               &solid_index) const
+    {
+      solid_field->evaluate(
+        cell, points, void_fraction, solid_velocity, solid_index);
+      if (std::any_of(solid_index.begin(),
+                      solid_index.end(),
+                      [](const int g) { return g >= 0; }) &&
+          is_free_contact_cell(cell))
+        {
+          void_fraction.assign(points.size(), 1.);
+          solid_velocity.assign(points.size(), Tensor<1, dim>());
+          solid_index.assign(points.size(), -1);
+        }
+    }
+
+
+    template <int dim>
+    void
     PenalizedNavierStokes<dim>::prepare_for_coarsening_and_refinement()
     {
       solution_transfer = std::make_unique<
@@ -305,6 +366,14 @@ namespace softsand
       std::vector<double>         vf;
       std::vector<Tensor<1, dim>> u_s;
       std::vector<int>            grain;
+      // Nodes of contact cells stay free (is_free_contact_cell()).
+      std::set<types::global_dof_index> contact_dofs;
+      for (const auto &cell : dof.active_cell_iterators())
+        if (!cell->is_artificial() && is_free_contact_cell(*cell))
+          {
+            cell->get_dof_indices(dof_indices);
+            contact_dofs.insert(dof_indices.begin(), dof_indices.end());
+          }
       for (const auto &cell : dof.active_cell_iterators())
         if (!cell->is_artificial())
           {
@@ -328,7 +397,7 @@ namespace softsand
                   element.system_to_component_index(k).first;
                 const auto i = dof_indices[k];
                 if (c >= dim || grain[k] < 0 || constraints.is_constrained(i) ||
-                    !constraints.can_store_line(i))
+                    !constraints.can_store_line(i) || contact_dofs.count(i))
                   continue;
                 constraints.add_line(i);
                 if (grain_of_dof != nullptr)
@@ -346,6 +415,7 @@ namespace softsand
     PenalizedNavierStokes<dim>::setup_dofs()
     {
       TimerOutput::Scope t(timer, "fluid: setup dofs");
+      find_velocity_wall_vertices();
       dof_handler.distribute_dofs(fe);
       std::vector<unsigned int> block_component(dim + 1, 0);
       block_component[dim] = 1;
@@ -528,7 +598,7 @@ namespace softsand
 
             // Rigid nodes: the grain acts through constraints only.
             if (solid_field != nullptr && !rigid_nodes())
-              solid_field->evaluate(
+              evaluate_solids(
                 *cell,
                 fe_values.get_quadrature_points(),
                 void_fraction,
@@ -1189,56 +1259,102 @@ namespace softsand
         f(grain, point, force);
       if (rigid_nodes())
         return;
+      // The penalty force density g = rho* (1 - vf) E / dt on the fluid,
+      // less the physical inertia of the fluid the grain displaces, with
+      // E = u^{n+1} - u~ (BDF1; BDF2 alike) and u~ = vf u^n + (1 - vf) u_s.
+      // E stays small when the grain accelerates (the covered fluid follows
+      // it within the step), whereas rho* (1 - vf)(u^{n+1} - u_s) / dt
+      // would charge the grain with the fictitious inertia rho Theta of the
+      // covered fluid. Steady: the Brinkman term beta (u - u_s), the fixed
+      // point of the transient scheme (the two agree to O(1/Theta)).
       const FEValuesExtractors::Vector velocities(0);
       std::vector<Tensor<1, dim>>      u, u_old, u_older;
-      const double rho = fluid_parameters.density;
-      const double rho_theta =
-        fluid_parameters.density * fluid_parameters.theta;
+      std::vector<Tensor<1, dim>>      g;
+      const double                     rho = fluid_parameters.density;
+      const double rho_theta = fluid_parameters.density * fluid_parameters.theta;
+      const auto penalty_density = [&](const FEValues<dim>               &fe_values,
+                                       const std::vector<double>         &vf,
+                                       const std::vector<Tensor<1, dim>> &u_s,
+                                       const std::vector<int>            &index) {
+        const unsigned int n_q = vf.size();
+        u.resize(n_q);
+        g.assign(n_q, Tensor<1, dim>());
+        fe_values[velocities].get_function_values(solution, u);
+        if (!last_was_steady)
+          {
+            u_old.resize(n_q);
+            u_older.resize(n_q);
+            fe_values[velocities].get_function_values(old_solution, u_old);
+            fe_values[velocities].get_function_values(older_solution, u_older);
+          }
+        for (unsigned int q = 0; q < n_q; ++q)
+          if (index[q] >= 0 && vf[q] < 1)
+            {
+              const double   solid = 1. - vf[q];
+              Tensor<1, dim> E;
+              if (last_was_steady)
+                E = u[q] - u_s[q];
+              else if (last_bdf_order == 1)
+                E = u[q] - (vf[q] * u_old[q] + solid * u_s[q]);
+              else
+                E = 1.5 * u[q] - 2. * (vf[q] * u_old[q] + solid * u_s[q]) +
+                    0.5 * (vf[q] * u_older[q] + solid * u_s[q]);
+              const double density =
+                last_was_steady ? rho + rho_theta * solid : rho_theta;
+              g[q] = (density * solid / last_time_step) * E;
+            }
+      };
+
+      // The penalty acts on the discrete fluid through its rows,
+      // R_k = int g phi_k, and so does the grain: its force is sum_k R_k and
+      // its torque sum_k (x_k - c) x R_k with x_k the node (Q2 interpolates
+      // rigid motions exactly, so this is the discrete dual of the grain's
+      // rigid velocity). Taken point by point instead, the Theta-sized parts
+      // that cancel within the rows of the solved system (against the
+      // pressure, and the rigid rows' constraint reactions above, which act
+      // at the nodes) act at other places and leave a Theta-sized couple
+      // that spins a grain as soon as it changes velocity. Each grain gets
+      // the rows of its own points.
+      const unsigned int                   n_dofs = fe.n_dofs_per_cell();
+      const Quadrature<dim>                nodes(fe.get_unit_support_points());
+      FEValues<dim>       node_values(fe, nodes, update_quadrature_points);
+      std::vector<int>    grains_here;
+      std::vector<double> rows(n_dofs);
       for_each_covered_cell(
         update_values | update_quadrature_points | update_JxW_values,
         [&](const FEValues<dim>               &fe_values,
             const std::vector<double>         &vf,
             const std::vector<Tensor<1, dim>> &u_s,
             const std::vector<int>            &index) {
-          const unsigned int n_q = vf.size();
-          u.resize(n_q);
-          fe_values[velocities].get_function_values(solution, u);
-          if (!last_was_steady)
+          penalty_density(fe_values, vf, u_s, index);
+          node_values.reinit(fe_values.get_cell());
+          grains_here.clear();
+          for (unsigned int q = 0; q < vf.size(); ++q)
+            if (index[q] >= 0 && vf[q] < 1 &&
+                std::find(grains_here.begin(), grains_here.end(), index[q]) ==
+                  grains_here.end())
+              grains_here.push_back(index[q]);
+          for (const int grain : grains_here)
             {
-              u_old.resize(n_q);
-              u_older.resize(n_q);
-              fe_values[velocities].get_function_values(old_solution, u_old);
-              fe_values[velocities].get_function_values(older_solution,
-                                                        u_older);
+              std::fill(rows.begin(), rows.end(), 0.);
+              for (unsigned int q = 0; q < vf.size(); ++q)
+                if (index[q] == grain && vf[q] < 1)
+                  for (unsigned int k = 0; k < n_dofs; ++k)
+                    {
+                      const unsigned int c =
+                        fe.system_to_component_index(k).first;
+                      if (c < dim)
+                        rows[k] += g[q][c] * fe_values.shape_value(k, q) *
+                                   fe_values.JxW(q);
+                    }
+              for (unsigned int k = 0; k < n_dofs; ++k)
+                if (rows[k] != 0)
+                  {
+                    Tensor<1, dim> force;
+                    force[fe.system_to_component_index(k).first] = rows[k];
+                    f(grain, node_values.quadrature_point(k), force);
+                  }
             }
-          for (unsigned int q = 0; q < n_q; ++q)
-            if (index[q] >= 0 && vf[q] < 1)
-              {
-                // The penalty force on the fluid, less the physical inertia
-                // of the fluid the grain displaces: rho Theta (1 - vf) E / dt
-                // with E = u^{n+1} - u~ (BDF1; BDF2 alike) and u~ = vf u^n +
-                // (1 - vf) u_s. E stays small when the grain accelerates
-                // (the covered fluid follows it within the step), whereas
-                // rho* (1 - vf)(u^{n+1} - u_s) / dt would charge the grain
-                // with the fictitious inertia rho Theta of the covered
-                // fluid. Steady: the Brinkman term beta (u - u_s), the
-                // fixed point of the transient scheme (the two agree to
-                // O(1/Theta)).
-                const double   solid = 1. - vf[q];
-                Tensor<1, dim> E;
-                if (last_was_steady)
-                  E = u[q] - u_s[q];
-                else if (last_bdf_order == 1)
-                  E = u[q] - (vf[q] * u_old[q] + solid * u_s[q]);
-                else
-                  E = 1.5 * u[q] - 2. * (vf[q] * u_old[q] + solid * u_s[q]) +
-                      0.5 * (vf[q] * u_older[q] + solid * u_s[q]);
-                const double density =
-                  last_was_steady ? rho + rho_theta * solid : rho_theta;
-                f(index[q],
-                  fe_values.quadrature_point(q),
-                  (density * solid / last_time_step) * E * fe_values.JxW(q));
-              }
         });
     }
 
@@ -1261,7 +1377,7 @@ namespace softsand
         if (cell->is_locally_owned())
           {
             fe_values.reinit(cell);
-            solid_field->evaluate(
+            evaluate_solids(
               *cell, fe_values.get_quadrature_points(), vf, u_s, index);
             for (unsigned int q = 0; q < vf.size(); ++q)
               if (index[q] >= 0 && vf[q] < 1)

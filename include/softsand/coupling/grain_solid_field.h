@@ -61,6 +61,10 @@ namespace softsand
                      std::vector<int>               &solid_index,
                      const double inflation = 0) const override;
 
+      unsigned int
+      n_solids_near(const CellAccessor<dim, dim> &cell,
+                    const double                  reach) const override;
+
       /// Covered fraction of the cell, sub-sampled: 1 - vf_cell. Also returns
       /// the grain covering most of the cell (-1 if none).
       double

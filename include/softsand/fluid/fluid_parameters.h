@@ -35,6 +35,16 @@ namespace softsand
       /// Penalization: constrain the velocity nodes of cells wholly inside
       /// a grain (the Theta -> infinity limit there), penalize cut cells.
       bool constrain_grain_interiors = true;
+      /// Cells where two solids, or a solid and a velocity wall, would
+      /// impose conflicting motions: left to the fluid (yes), kept (no), or
+      /// left to the fluid when the solids move (automatic).
+      enum class FreeContactCells
+      {
+        automatic,
+        yes,
+        no
+      };
+      FreeContactCells free_contact_cells = FreeContactCells::automatic;
       /// Body force per unit volume (N/m^3), a function of x, y, z, t.
       std::string body_force = "0; 0; 0";
 

@@ -347,6 +347,21 @@ namespace softsand
                                  const std::vector<double> &,
                                  const std::vector<Tensor<1, dim>> &,
                                  const std::vector<int> &)> &cell_action) const;
+      /// The solid field at @p points of @p cell, with contact cells (see
+      /// FluidParameters::free_contact_cells) left to the fluid.
+      void
+      evaluate_solids(const CellAccessor<dim, dim> &cell,
+                      const std::vector<Point<dim>>  &points,
+                      std::vector<double>            &void_fraction,
+                      std::vector<Tensor<1, dim>>    &solid_velocity,
+                      std::vector<int>               &solid_index) const;
+      /// Whether @p cell touches a face with an imposed velocity or lies
+      /// within one cell of two solids, and contact cells are freed.
+      bool
+      is_free_contact_cell(const CellAccessor<dim, dim> &cell) const;
+      /// Mark the vertices on faces with an imposed velocity.
+      void
+      find_velocity_wall_vertices();
       /// Penalty coefficient of the fixed-point (steady) Brinkman term.
       double
       brinkman_coefficient(const double void_fraction,
@@ -386,6 +401,8 @@ namespace softsand
 
       const SolidField<dim>          *solid_field = nullptr;
       bool                             moving_solids = false;
+      /// Per triangulation vertex: on a face with an imposed velocity.
+      std::vector<bool>                velocity_wall_vertex;
       std::unique_ptr<
         parallel::distributed::SolutionTransfer<dim, BlockVector>>
         solution_transfer;

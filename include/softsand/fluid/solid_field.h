@@ -49,6 +49,13 @@ namespace softsand
                      std::vector<Tensor<1, dim>>    &solid_velocity,
                      std::vector<int>               &solid_index,
                      const double                    inflation = 0) const = 0;
+
+      /// How many distinct solids come within @p reach (m) of @p cell's
+      /// bounding box (counting stops at 2): a cell near two solids sits in
+      /// a contact, where their rigid motions may conflict.
+      virtual unsigned int
+      n_solids_near(const CellAccessor<dim, dim> &cell,
+                    const double                  reach) const = 0;
     };
   } // namespace fluid
 } // namespace softsand
