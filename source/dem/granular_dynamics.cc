@@ -763,6 +763,10 @@ namespace softsand
         {
           omega2 = std::max(omega2, grain_stiffness[i] * inv_mass[i]);
           rate   = std::max(rate, grain_damping[i] * inv_mass[i]);
+          // The fluid's rotational resistance damps the spin explicitly too.
+          if (i < fluid_rotational_response.size())
+            rate = std::max(rate,
+                            fluid_rotational_response[i] * inv_inertia[i]);
         }
       stiffness_rate = std::sqrt(omega2) * dt;
       damping_rate   = rate * dt;

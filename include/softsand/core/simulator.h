@@ -119,6 +119,14 @@ namespace softsand
       unsigned int                                             n_mesh_adaptations = 0;
       coupling::GrainForces<dim>                               grain_forces;
       coupling::GrainForces<dim>                               grain_forces_eq7;
+      /// Per grain id at the last fluid solve: velocity, force, angular
+      /// velocity, torque and the measured resistances (secants), so that
+      /// the next step can linearize the held force; checkpointed.
+      struct ResistanceHistory
+      {
+        std::vector<Tensor<1, 3>> velocity, force, angular_velocity, torque;
+        std::vector<double>       resistance, rotational_resistance;
+      } resistance_history;
     };
 
     /// Read @p filename and run the scene in its dimension.
