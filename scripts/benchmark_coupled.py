@@ -52,6 +52,8 @@ subsection fluid
   set viscosity = 1
   set theta = 1e6
   set solid model = rigid nodes
+  # Both fluid models alike (automatic frees them in the transient one only).
+  set free contact cells = true
 end
 """
 

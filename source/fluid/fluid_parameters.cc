@@ -63,9 +63,14 @@ namespace softsand
         "touching grains moving apart), and the solid model turns the "
         "conflict into a fictitious force of order rho Theta / dt times the "
         "relative velocity; the free layer carries a resolved lubrication "
-        "flow instead, and the contact itself is the DEM's. automatic: true "
-        "when the grains move (coupled runs), false for fixed grains "
-        "(permeability: contacts stay closed).");
+        "flow instead, and the contact itself is the DEM's. The freed cells "
+        "are a cell thick: on meshes of a few cells per diameter they take "
+        "a large part of a dense pack's grains away from the fluid (the "
+        "2,000-grain Hele-Shaw pack at 2 cells per diameter: permeability "
+        "100x). automatic: true for moving grains in the transient fluid "
+        "model (where the held penalty reaction drove grains at walls to "
+        "NaN), false in the quasi-steady model (the measured resistance "
+        "keeps those grains stable) and for fixed grains.");
       prm.declare_entry("body force",
                         "0; 0; 0",
                         Patterns::Anything(),

@@ -127,7 +127,8 @@ namespace softsand
       using F = FluidParameters::FreeContactCells;
       const bool free_contacts =
         fluid_parameters.free_contact_cells == F::yes ||
-        (fluid_parameters.free_contact_cells == F::automatic && moving_solids);
+        (fluid_parameters.free_contact_cells == F::automatic && moving_solids &&
+         !last_was_steady);
       if (!free_contacts || solid_field == nullptr)
         return false;
       for (const auto v : cell.vertex_indices())
