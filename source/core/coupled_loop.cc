@@ -288,43 +288,36 @@ namespace softsand
                 std::vector<Tensor<1, 3>> force(n_ids), torque(n_ids);
                 std::vector<double>       response(n_ids), rotational(n_ids);
                 const double              mu = p.fluid.viscosity;
-                // Grains whose surface comes within @p cells finest cells
-                // plus @p diameters own diameters of the box or of another
-                // grain.
-                const auto crowded_within = [&](const double cells,
-                                                const double diameters) {
-                  std::vector<bool>         crowded(grains.size(), false);
-                  std::vector<unsigned int> near;
-                  for (unsigned int g = 0; g < grains.size(); ++g)
-                    {
-                      const auto  &c = grains[g].center;
-                      const double r = grains[g].radius;
-                      const double reach =
-                        cells * finest + diameters * 2 * r;
-                      for (unsigned int d = 0; d < dim; ++d)
-                        crowded[g] = crowded[g] ||
-                                     c[d] - r - p.mesh.lower_corner[d] < reach ||
-                                     p.mesh.upper_corner[d] - c[d] - r < reach;
-                      if (crowded[g])
-                        continue;
-                      BoundingBox<dim> box({c, c});
-                      box.extend(r + reach);
-                      solid_field->locator().grains_near_box(box, near);
-                      for (const unsigned int k : near)
-                        if (k != g && c.distance(grains[k].center) - r -
-                                          grains[k].radius <
-                                        reach)
-                          crowded[g] = true;
-                    }
-                  return crowded;
-                };
-                // Within a finest cell: the thin fluid layer there resists
-                // far more than the estimates below. Within a diameter:
-                // neighbours and walls may.
-                const std::vector<bool> touching = crowded_within(1, 0);
-                std::vector<bool>       neighbours;
+                // Transient model: each grain's clearance, the gap from its
+                // surface to the box or the nearest other grain, searched
+                // up to a diameter or a finest cell (beyond, it does not
+                // matter).
+                std::vector<double> clearance;
                 if (!quasi_steady)
-                  neighbours = crowded_within(0, 1);
+                  {
+                    clearance.resize(grains.size());
+                    std::vector<unsigned int> near;
+                    for (unsigned int g = 0; g < grains.size(); ++g)
+                      {
+                        const auto  &c   = grains[g].center;
+                        const double r   = grains[g].radius;
+                        const double cap = std::max(2 * r, finest);
+                        double      &gap = clearance[g];
+                        gap              = cap;
+                        for (unsigned int d = 0; d < dim; ++d)
+                          gap = std::min({gap,
+                                          c[d] - r - p.mesh.lower_corner[d],
+                                          p.mesh.upper_corner[d] - c[d] - r});
+                        BoundingBox<dim> box({c, c});
+                        box.extend(r + cap);
+                        solid_field->locator().grains_near_box(box, near);
+                        for (const unsigned int k : near)
+                          if (k != g)
+                            gap = std::min(gap,
+                                           c.distance(grains[k].center) - r -
+                                             grains[k].radius);
+                      }
+                  }
                 for (unsigned int g = 0; g < grains.size(); ++g)
                   {
                     const auto   i = grain_ids[g];
@@ -381,8 +374,13 @@ namespace softsand
                     if (i < previous_velocity.size() &&
                         previous_resistance[i] > 0)
                       {
-                        const bool always = quasi_steady || touching[g];
-                        const bool if_larger = !quasi_steady && neighbours[g];
+                        // Within a finest cell: the thin fluid layer there
+                        // resists far more than the estimates above. Within
+                        // a diameter: neighbours and walls may.
+                        const bool always =
+                          quasi_steady || clearance[g] < finest;
+                        const bool if_larger =
+                          !quasi_steady && clearance[g] < 2 * grains[g].radius;
                         const auto secant = [always, if_larger](
                                               const Tensor<1, 3> &dv,
                                                      const Tensor<1, 3> &dF,
