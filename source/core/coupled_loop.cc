@@ -304,10 +304,19 @@ namespace softsand
                         const double cap = std::max(2 * r, finest);
                         double      &gap = clearance[g];
                         gap              = cap;
+                        // Faces with an imposed velocity only, as for the
+                        // fluid's free contact cells: a pressure face holds
+                        // no layer of fluid against the grain.
+                        using BC = fluid::BoundaryConditions<dim>;
                         for (unsigned int d = 0; d < dim; ++d)
-                          gap = std::min({gap,
-                                          c[d] - r - p.mesh.lower_corner[d],
-                                          p.mesh.upper_corner[d] - c[d] - r});
+                          {
+                            if (p.boundary_conditions.face(2 * d).type !=
+                                BC::Type::pressure)
+                              gap = std::min(gap, c[d] - r - p.mesh.lower_corner[d]);
+                            if (p.boundary_conditions.face(2 * d + 1).type !=
+                                BC::Type::pressure)
+                              gap = std::min(gap, p.mesh.upper_corner[d] - c[d] - r);
+                          }
                         BoundingBox<dim> box({c, c});
                         box.extend(r + cap);
                         solid_field->locator().grains_near_box(box, near);

@@ -351,6 +351,19 @@ namespace softsand
             postprocess::compute_porosity(triangulation, *solid_field);
           r["porosity_cells"]    = porosity.fluid_cell_fraction;
           r["porosity_integral"] = porosity.void_fraction_integral;
+          if (p.postprocessing.pressure_planes.size() == 2)
+            {
+              // Between the planes where K is measured, away from buffers.
+              const auto &planes = p.postprocessing.pressure_planes;
+              const auto  slab   = postprocess::compute_porosity(
+                triangulation,
+                *solid_field,
+                axis,
+                std::min(planes[0], planes[1]),
+                std::max(planes[0], planes[1]));
+              r["slab_porosity_cells"]    = slab.fluid_cell_fraction;
+              r["slab_porosity_integral"] = slab.void_fraction_integral;
+            }
         }
 
       if (!p.postprocessing.exact_velocity.empty())

@@ -238,15 +238,28 @@ namespace softsand
     template <int dim>
     Porosity
     compute_porosity(const Triangulation<dim>             &tria,
-                     const coupling::GrainSolidField<dim> &solids)
+                     const coupling::GrainSolidField<dim> &solids,
+                     const unsigned int                    axis,
+                     const double                          lower,
+                     const double                          upper)
     {
       double sums[3] = {0, 0, 0}; // fluid cells' volume, vf integral, volume
       for (const auto &cell : tria.active_cell_iterators())
         if (cell->is_locally_owned())
           {
+            double inside = 1; // part of the cell between the planes
+            if (lower < upper)
+              {
+                const auto   box = cell->bounding_box();
+                const double a   = box.lower_bound(axis);
+                const double b   = box.upper_bound(axis);
+                inside = std::max(0., std::min(b, upper) - std::max(a, lower)) / (b - a);
+                if (inside == 0)
+                  continue;
+              }
             int          grain;
             const double vf = 1. - solids.cell_solid_fraction(*cell, grain);
-            const double v  = cell->measure();
+            const double v  = inside * cell->measure();
             if (vf > 0.9)
               sums[0] += v;
             sums[1] += vf * v;
@@ -347,7 +360,10 @@ namespace softsand
                                             const BlockVector &,            \
                                             const double);                  \
   template Porosity compute_porosity(const Triangulation<dim> &,            \
-                                     const coupling::GrainSolidField<dim> &); \
+                                     const coupling::GrainSolidField<dim> &, \
+                                     const unsigned int,                    \
+                                     const double,                          \
+                                     const double);                         \
   template ErrorNorms compute_errors(const DoFHandler<dim> &,               \
                                      const BlockVector &,                   \
                                      const Function<dim> &);

@@ -78,10 +78,19 @@ namespace softsand
       double void_fraction_integral = 1;
     };
 
+    /**
+     * Porosity of the cells between the planes x_axis = lower and upper
+     * (cells cut by a plane count with the part inside), so that a pack with
+     * grain-free buffers is measured where its permeability is; the whole
+     * domain when lower >= upper.
+     */
     template <int dim>
     Porosity
     compute_porosity(const Triangulation<dim>            &tria,
-                     const coupling::GrainSolidField<dim> &solids);
+                     const coupling::GrainSolidField<dim> &solids,
+                     const unsigned int                    axis  = 0,
+                     const double                          lower = 0,
+                     const double                          upper = 0);
 
     struct ErrorNorms
     {
