@@ -64,3 +64,17 @@ def run(softsand, text, workdir, name, ranks=1, overrides=()):
     if proc.returncode != 0:
         return None, wall, proc.stderr.strip().splitlines()[-1:]
     return read_statistics(outdir)[-1], wall, []
+
+
+def pyplot():
+    """matplotlib.pyplot with the file backend, or None (and a message) where
+    matplotlib is missing: the studies print their tables without it."""
+    try:
+        import matplotlib
+        matplotlib.use('Agg')
+        import matplotlib.pyplot as plt
+        return plt
+    except ImportError:
+        print('(matplotlib not available: no plot; apt-get install python3-matplotlib '
+              'and run with /usr/bin/python3)')
+        return None

@@ -88,12 +88,8 @@ def main():
         spread = max(spread, (max(values) - min(values)) / max(abs(v) for v in values))
     print('\nlargest relative spread of v between the time steps for t >= %g s: %.2f %%'
           % (a.after, 100 * spread))
-    try:
-        import matplotlib
-        matplotlib.use('Agg')
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print('(matplotlib not available: no plot)')
+    plt = prm_tools.pyplot()
+    if plt is None:
         return
     fig, ax = plt.subplots(figsize=(6, 4))
     for dt, (ts, vs, _, _) in curves.items():

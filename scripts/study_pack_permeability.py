@@ -15,6 +15,12 @@ and the grains' void volume in the pack's box.
 
   python3 scripts/study_pack_permeability.py refinement [--n 4,6,8]
   python3 scripts/study_pack_permeability.py porosity [--n 6] [--packs 10]
+  python3 scripts/study_pack_permeability.py plot [--plot doc/figures/...]
+
+plot: every finished run in the work directory, K against the paper's cell
+porosity with Kozeny-Carman, and the Kozeny constant C of the least-squares
+fit K = phi^3 d^2 / (C (1 - phi)^2) over the runs at N >= 6 (Kozeny-Carman:
+C = 180).
 """
 import argparse
 import math
@@ -32,10 +38,10 @@ SOFTSAND = os.path.join(ROOT, 'build', 'softsand')
 
 # (mean diameter m, friction, compaction pressure Pa, seed): ten packs of the
 # Fig. 3 box, 100 grains of +-10 % size.
-PACKS = [(1.0e-4, 0.7, 1e4, 3), (1.0e-4, 0.7, 1e3, 4), (1.0e-4, 0.7, 1e5, 5),
-         (1.0e-4, 0.3, 1e4, 6), (1.0e-4, 0.1, 1e4, 7), (1.0e-4, 0.0, 1e5, 8),
+PACKS = [(1.0e-4, 0.7, 1e4, 3), (1.0e-4, 0.7, 1e3, 4), (1.0e-4, 0.7, 3e4, 5),
+         (1.0e-4, 0.3, 1e4, 6), (1.0e-4, 0.1, 1e4, 7), (1.0e-4, 0.0, 3e4, 8),
          (0.9e-4, 0.7, 1e4, 9), (0.9e-4, 0.1, 1e4, 10), (1.1e-4, 0.7, 1e4, 11),
-         (1.1e-4, 0.3, 1e5, 12)]
+         (1.1e-4, 0.3, 3e4, 12)]
 
 
 def kozeny_carman(phi, d):
@@ -76,12 +82,12 @@ def pack_porosity(pack, height, thickness):
     return 1.0 - solid / (1e-3 * height * thickness)
 
 
-def permeability(workdir, name, pack, height, thickness, n, d):
+def permeability(workdir, name, pack, height, thickness, n, d, max_overlap=0.6):
     text = open(os.path.join(ROOT, 'parameters', 'pack_permeability.prm')).read()
     q = 1e-3  # superficial velocity (m/s)
     row, wall, err = prm_tools.run(
         SOFTSAND, text, workdir, name, 1,
-        [('grains/file', pack), ('grains/max overlap ratio', 0.6),
+        [('grains/file', pack), ('grains/max overlap ratio', max_overlap),
          ('mesh/upper corner', '1.2e-3, %.9g, %.9g' % (height, thickness)),
          ('mesh/cells per diameter', n),
          ('boundary conditions/x min/flow rate', '%.9g' % (q * height * thickness))])
@@ -90,16 +96,71 @@ def permeability(workdir, name, pack, height, thickness, n, d):
     return row, wall, None
 
 
+def plot(workdir, path):
+    """K against the cells' porosity for every finished run; fit of C."""
+    points = []
+    for name in sorted(os.listdir(workdir)):
+        m = re.match(r'K_d([0-9.e-]+)_mu([0-9.]+)_p([0-9.e+]+)_N(\d+)$', name)
+        if not m or not os.path.exists(os.path.join(workdir, name, 'statistics.txt')):
+            continue
+        rows = prm_tools.read_statistics(os.path.join(workdir, name))
+        if not rows or 'slab_porosity_cells' not in rows[-1]:
+            continue
+        d = float(m.group(1))
+        phi = rows[-1]['slab_porosity_cells']
+        k = rows[-1]['permeability']
+        points.append((name, int(m.group(4)), d, phi, k, k / kozeny_carman(phi, d)))
+    # Least squares in log K: log C = mean(log(phi^3 d^2 / ((1-phi)^2 K))),
+    # over N >= 6 (N = 4 gives 0.07 of the N = 8 value on the Fig. 5a pack).
+    logs = [math.log(180 / p[5]) for p in points if p[1] >= 6]
+    c = math.exp(sum(logs) / len(logs)) if logs else float('nan')
+    print('| run | N | d (mm) | porosity (cells vf > 0.9, between the planes) | K (m^2) | K / K_KC |')
+    print('|---|---|---|---|---|---|')
+    for name, n, d, phi, k, r in points:
+        print('| %s | %d | %g | %.3f | %.3e | %.2f |' % (name, n, d * 1e3, phi, k, r))
+    fitted = [p[5] for p in points if p[1] >= 6]
+    print('\n%d runs at N >= 6: K / K_KC from %.2f to %.2f; fitted Kozeny constant '
+          'C = %.0f (Kozeny-Carman 180)' % (len(fitted), min(fitted), max(fitted), c))
+    plt = prm_tools.pyplot()
+    if plt is None:
+        return
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for n, marker in [(4, 's'), (6, 'o'), (8, '^')]:
+        sel = [p for p in points if p[1] == n]
+        if sel:
+            ax.scatter([p[3] for p in sel], [p[4] / p[2] ** 2 for p in sel], marker=marker,
+                       label='N = %d' % n)
+    phis = [0.25 + 0.005 * i for i in range(41)]
+    ax.plot(phis, [kozeny_carman(p, 1.0) for p in phis], 'b--', label='Kozeny-Carman (C = 180)')
+    ax.plot(phis, [kozeny_carman(p, 1.0) * 180 / c for p in phis], 'k:',
+            label='fit, C = %.0f' % c)
+    ax.set_yscale('log')
+    ax.set_xlabel('porosity (cells with vf > 0.9)')
+    ax.set_ylabel('K / d^2')
+    ax.set_title('Pack permeability (Fig. 5b)')
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print('plot:', path)
+
+
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument('study', choices=['refinement', 'porosity'])
+    ap.add_argument('study', choices=['refinement', 'porosity', 'plot'])
+    ap.add_argument('--plot', default=os.path.join(ROOT, 'doc/figures/pack_permeability.png'))
     ap.add_argument('--n', default=None)
     ap.add_argument('--packs', type=int, default=10)
     ap.add_argument('--first', type=int, default=0,
                     help='porosity study: start at this pack (0-based), to '
                          'split the series over processes')
+    ap.add_argument('--max-overlap', type=float, default=0.6,
+                    help='grains/max overlap ratio for the packs (the soft '
+                         'grains compacted at 100 kPa overlap by 0.7-0.9 R*)')
     ap.add_argument('--workdir', default=os.path.join(ROOT, 'output/study_pack_permeability'))
     a = ap.parse_args()
+    if a.study == 'plot':
+        plot(a.workdir, a.plot)
+        return
     print('| pack (d, friction, p) | N | cells | DoFs | FGMRES | wall (s) | K (m^2) | '
           'porosity, cells vf > 0.9 | porosity of the grains | K/K_KC (cells) | K/K_KC (grains) |')
     print('|---|---|---|---|---|---|---|---|---|---|---|')
@@ -113,7 +174,8 @@ def main():
         pack, height, thickness = make_pack(a.workdir, d, friction, pressure, seed)
         for n in ns:
             name = 'K_d%g_mu%g_p%g_N%s' % (d, friction, pressure, n)
-            row, wall, err = permeability(a.workdir, name, pack, height, thickness, n, d)
+            row, wall, err = permeability(a.workdir, name, pack, height, thickness, n, d,
+                                          a.max_overlap)
             label = '%g mm, %g, %g kPa' % (d * 1e3, friction, pressure / 1e3)
             if row is None:
                 print('| %s | %s | failed: %s |' % (label, n, err), flush=True)

@@ -82,12 +82,8 @@ def main():
             dps = [r[2][-1]['pressure_drop'] for r in runs]
             print('spread of dp at the end, %s: %.3g %%' %
                   (label, 100 * (max(dps) - min(dps)) / max(abs(x) for x in dps)))
-    try:
-        import matplotlib
-        matplotlib.use('Agg')
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print('(matplotlib not available: no plot)')
+    plt = prm_tools.pyplot()
+    if plt is None:
         return
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     for ax, kind in zip(axes, ('theta', 'dt')):
