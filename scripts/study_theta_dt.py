@@ -57,12 +57,15 @@ def main():
     base = open(os.path.join(ROOT, 'parameters', 'theta_dt_convergence.prm')).read()
 
     series = {'theta': [], 'dt': []}
+    done = {}  # (theta, dt) -> (rows, wall): the two series share a run
     for theta in a.thetas.split(','):
-        rows, wall = run(a, base, theta, a.dt_for_theta)
+        rows, wall = done.setdefault((theta, a.dt_for_theta),
+                                     run(a, base, theta, a.dt_for_theta))
         if rows:
             series['theta'].append((theta, a.dt_for_theta, rows, wall))
     for dt in a.dts.split(','):
-        rows, wall = run(a, base, a.theta_for_dt, dt)
+        key = (a.theta_for_dt, dt)
+        rows, wall = done[key] if key in done else run(a, base, *key)
         if rows:
             series['dt'].append((a.theta_for_dt, dt, rows, wall))
 
