@@ -112,13 +112,12 @@ def plot(workdir, path):
         points.append((name, int(m.group(4)), d, phi, k, k / kozeny_carman(phi, d)))
     # Least squares in log K: log C = mean(log(phi^3 d^2 / ((1-phi)^2 K))),
     # over N >= 6 (N = 4 gives 0.07 of the N = 8 value on the Fig. 5a pack).
-    logs = [math.log(180 / p[5]) for p in points if p[1] >= 6]
-    c = math.exp(sum(logs) / len(logs)) if logs else float('nan')
+    fitted = [p[5] for p in points if p[1] >= 6]
+    c = math.exp(sum(math.log(180 / r) for r in fitted) / len(fitted)) if fitted else float('nan')
     print('| run | N | d (mm) | porosity (cells vf > 0.9, between the planes) | K (m^2) | K / K_KC |')
     print('|---|---|---|---|---|---|')
     for name, n, d, phi, k, r in points:
         print('| %s | %d | %g | %.3f | %.3e | %.2f |' % (name, n, d * 1e3, phi, k, r))
-    fitted = [p[5] for p in points if p[1] >= 6]
     print('\n%d runs at N >= 6: K / K_KC from %.2f to %.2f; fitted Kozeny constant '
           'C = %.0f (Kozeny-Carman 180)' % (len(fitted), min(fitted), max(fitted), c))
     plt = prm_tools.pyplot()

@@ -58,14 +58,18 @@ def main():
 
     series = {'theta': [], 'dt': []}
     done = {}  # (theta, dt) -> (rows, wall): the two series share a run
+
+    def run_once(theta, dt):
+        if (theta, dt) not in done:
+            done[(theta, dt)] = run(a, base, theta, dt)
+        return done[(theta, dt)]
+
     for theta in a.thetas.split(','):
-        rows, wall = done.setdefault((theta, a.dt_for_theta),
-                                     run(a, base, theta, a.dt_for_theta))
+        rows, wall = run_once(theta, a.dt_for_theta)
         if rows:
             series['theta'].append((theta, a.dt_for_theta, rows, wall))
     for dt in a.dts.split(','):
-        key = (a.theta_for_dt, dt)
-        rows, wall = done[key] if key in done else run(a, base, *key)
+        rows, wall = run_once(a.theta_for_dt, dt)
         if rows:
             series['dt'].append((a.theta_for_dt, dt, rows, wall))
 

@@ -307,14 +307,12 @@ namespace softsand
                         // Faces with an imposed velocity only, as for the
                         // fluid's free contact cells: a pressure face holds
                         // no layer of fluid against the grain.
-                        using BC = fluid::BoundaryConditions<dim>;
+                        const auto &bc = p.boundary_conditions;
                         for (unsigned int d = 0; d < dim; ++d)
                           {
-                            if (p.boundary_conditions.face(2 * d).type !=
-                                BC::Type::pressure)
+                            if (bc.imposes_velocity(2 * d))
                               gap = std::min(gap, c[d] - r - p.mesh.lower_corner[d]);
-                            if (p.boundary_conditions.face(2 * d + 1).type !=
-                                BC::Type::pressure)
+                            if (bc.imposes_velocity(2 * d + 1))
                               gap = std::min(gap, p.mesh.upper_corner[d] - c[d] - r);
                           }
                         BoundingBox<dim> box({c, c});

@@ -112,8 +112,8 @@ namespace softsand
           for (const auto f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
                 cell->face(f)->boundary_id() < BC::n_faces &&
-                boundary_conditions.face(cell->face(f)->boundary_id()).type !=
-                  BC::Type::pressure)
+                boundary_conditions.imposes_velocity(
+                  cell->face(f)->boundary_id()))
               for (const auto v : cell->face(f)->vertex_indices())
                 velocity_wall_vertex[cell->face(f)->vertex_index(v)] = true;
     }
@@ -1060,9 +1060,6 @@ namespace softsand
       const unsigned int bdf_order)
     {
       using BC = BoundaryConditions<dim>;
-      const auto constrained_face = [&](const unsigned int id) {
-        return boundary_conditions.face(id).type != BC::Type::pressure;
-      };
       Tensor<1, dim> force;
       // Rows of velocity nodes on constrained faces: each cell adds its
       // share of F - A u, the force of the fluid on those nodes (the sign
@@ -1071,7 +1068,7 @@ namespace softsand
       const CellFilter touches_constrained_face = [&](const auto &cell) {
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
-              constrained_face(cell->face(f)->boundary_id()))
+              boundary_conditions.imposes_velocity(cell->face(f)->boundary_id()))
             return true;
         return false;
       };
@@ -1084,7 +1081,7 @@ namespace softsand
           std::fill(on_face.begin(), on_face.end(), false);
           for (const auto f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
-                constrained_face(cell->face(f)->boundary_id()))
+                boundary_conditions.imposes_velocity(cell->face(f)->boundary_id()))
               for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
                 on_face[fe.face_to_cell_index(k, f)] = true;
           cell->get_dof_values(solution, local_solution);
@@ -1102,7 +1099,7 @@ namespace softsand
       assemble(kind, dt, bdf_order, &residual, &touches_constrained_face);
       // Pressure faces: the fluid pushes with p_b on the outward normal.
       for (unsigned int id = 0; id < BC::n_faces; ++id)
-        if (!constrained_face(id))
+        if (!boundary_conditions.imposes_velocity(id))
           force[id / 2] += (id % 2 == 0 ? -1. : 1.) *
                            boundary_conditions.face(id).pressure *
                            boundary_conditions.face_area(id);

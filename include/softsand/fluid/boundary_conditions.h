@@ -74,6 +74,14 @@ namespace softsand
         return faces[boundary_id];
       }
 
+      /// Whether face @p boundary_id imposes the velocity (wall, moving
+      /// wall, velocity or flow rate): every type but pressure.
+      bool
+      imposes_velocity(const unsigned int boundary_id) const
+      {
+        return faces[boundary_id].type != Type::pressure;
+      }
+
       /// Whether the pressure level is fixed: a pressure face or a
       /// pressure region.
       bool
