@@ -289,24 +289,18 @@ namespace softsand
 
           // A pressure node all of whose cells have every velocity node
           // rigid meets no free velocity in div: it is undetermined. Pin it
-          // (p = 0) or FGMRES crawls through one null vector per node.
+          // (p = 0) or FGMRES crawls through one null vector per node,
+          // unless the pressure of such cells is smoothed (assemble()).
           // Only locally active dofs: their cells are all owned or ghost.
+          if (smooth_solid_pressure())
+            {
+              constraints.close();
+              return;
+            }
           const IndexSet active = DoFTools::extract_locally_active_dofs(dof_handler);
           std::set<types::global_dof_index> free_pressure, solid_pressure;
           std::vector<types::global_dof_index> dof_indices(
             fe.n_dofs_per_cell());
-          // Rigid, Dirichlet, or hanging on rigid parents only.
-          const auto fixed_velocity = [&](const types::global_dof_index i) {
-            if (rigid_dof_grain.count(i))
-              return true;
-            const auto *entries = constraints.get_constraint_entries(i);
-            if (entries == nullptr)
-              return false;
-            const auto hanging = hanging_rigid_parents.find(i);
-            return entries->empty() ||
-                   (hanging != hanging_rigid_parents.end() &&
-                    hanging->second.size() == entries->size());
-          };
           for (const auto &cell : dof_handler.active_cell_iterators())
             if (!cell->is_artificial())
               {
@@ -314,7 +308,7 @@ namespace softsand
                 bool solid_cell = true;
                 for (unsigned int k = 0; k < dof_indices.size() && solid_cell; ++k)
                   if (fe.system_to_component_index(k).first < dim)
-                    solid_cell = fixed_velocity(dof_indices[k]);
+                    solid_cell = is_fixed_velocity(dof_indices[k]);
                 for (unsigned int k = 0; k < dof_indices.size(); ++k)
                   if (fe.system_to_component_index(k).first == dim)
                     (solid_cell ? solid_pressure : free_pressure)
@@ -326,6 +320,22 @@ namespace softsand
               constraints.add_line(i);
         }
       constraints.close();
+    }
+
+
+    template <int dim>
+    bool
+    PenalizedNavierStokes<dim>::is_fixed_velocity(
+      const types::global_dof_index i) const
+    {
+      if (rigid_dof_grain.count(i))
+        return true;
+      const auto *entries = constraints.get_constraint_entries(i);
+      if (entries == nullptr)
+        return false;
+      const auto hanging = hanging_rigid_parents.find(i);
+      return entries->empty() || (hanging != hanging_rigid_parents.end() &&
+                                  hanging->second.size() == entries->size());
     }
 
 
@@ -443,8 +453,9 @@ namespace softsand
         // Velocity components couple through convection (Newton) terms.
         for (unsigned int c = 0; c < dim + 1; ++c)
           for (unsigned int d = 0; d < dim + 1; ++d)
-            coupling[c][d] = (c == dim && d == dim) ? DoFTools::none :
-                                                      DoFTools::always;
+            coupling[c][d] = (c == dim && d == dim && !smooth_solid_pressure()) ?
+                               DoFTools::none :
+                               DoFTools::always;
         BlockDynamicSparsityPattern dsp(relevant_partitioning);
         DoFTools::make_sparsity_pattern(
           dof_handler, coupling, dsp, constraints, false);
@@ -642,18 +653,26 @@ namespace softsand
             // the viscous mass matrix by about the free fraction: scale the
             // approximation alike.
             double free_fraction = 1;
+            // Every velocity node imposed: the pressure Laplacian (weight
+            // solid_smoothing) continues the fluid's pressure smoothly.
+            double solid_smoothing = 0;
             if (!rigid_dof_grain.empty())
               {
                 cell->get_dof_indices(dof_indices);
-                unsigned int n_velocity = 0, n_rigid = 0;
+                unsigned int n_velocity = 0, n_rigid = 0, n_fixed = 0;
                 for (unsigned int k = 0; k < dofs_per_cell; ++k)
                   if (component[k] < dim)
                     {
                       ++n_velocity;
                       n_rigid += rigid_dof_grain.count(dof_indices[k]);
+                      n_fixed += is_fixed_velocity(dof_indices[k]);
                     }
                 free_fraction =
                   std::max(1e-4, std::pow(1. - double(n_rigid) / n_velocity, 4));
+                if (smooth_solid_pressure() && n_rigid > 0)
+                  solid_smoothing =
+                    fluid_parameters.rigid_node_pressure_smoothing * h * h /
+                    mu * std::pow(double(n_fixed) / n_velocity, 4);
               }
 
             for (unsigned int q = 0; q < n_q; ++q)
@@ -758,6 +777,14 @@ namespace softsand
                                 phi * shape_grad[j][cj] * JxW;
                             else
                               {
+                                if (solid_smoothing > 0)
+                                  {
+                                    const double smoothing =
+                                      solid_smoothing *
+                                      (shape_grad[i] * shape_grad[j]) * JxW;
+                                    local_matrix(i, j) -= smoothing;
+                                    local_mass(i, j) += smoothing;
+                                  }
                                 local_mass(i, j) +=
                                   mass_weight * phi * shape_value[j] * JxW;
                                 if (laplace_weight != 0)

@@ -32,6 +32,10 @@ namespace softsand
       /// Rigid nodes: nodes within radius + offset * (node spacing) of a
       /// grain centre are constrained (dimensionless offset).
       double rigid_node_offset = 0.25;
+      /// Rigid nodes: weight alpha of the pressure Laplacian, alpha h^2 / mu,
+      /// added to the continuity rows in cells whose velocity nodes are
+      /// all imposed (dimensionless; 0: pin those pressures instead).
+      double rigid_node_pressure_smoothing = 1e-2;
       /// Penalization: constrain the velocity nodes of cells wholly inside
       /// a grain (the Theta -> infinity limit there), penalize cut cells.
       bool constrain_grain_interiors = true;

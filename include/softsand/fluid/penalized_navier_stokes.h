@@ -322,6 +322,23 @@ namespace softsand
                fluid_parameters.solid_model ==
                  FluidParameters::SolidModel::rigid_nodes;
       }
+      /// Rigid nodes, matrix-based solver: smooth the pressure of cells
+      /// whose velocity nodes are all imposed (see FluidParameters) rather
+      /// than pin it.
+      bool
+      smooth_solid_pressure() const
+      {
+        // Not rigid_nodes(): the sparsity is built before grains attach.
+        return fluid_parameters.solid_model ==
+                 FluidParameters::SolidModel::rigid_nodes &&
+               fluid_parameters.rigid_node_pressure_smoothing > 0 &&
+               solver_parameters.linear_solver !=
+                 SolverParameters::LinearSolver::matrix_free;
+      }
+      /// Whether velocity dof @p i is imposed: rigid, Dirichlet, or hanging
+      /// on rigid parents only (make_constraints() must have run).
+      bool
+      is_fixed_velocity(const types::global_dof_index i) const;
       unsigned int
       solve_linear(const bool convection);
       /// The pressure-Laplacian coefficient 1/beta of the Schur
