@@ -653,8 +653,10 @@ namespace softsand
             // the viscous mass matrix by about the free fraction: scale the
             // approximation alike.
             double free_fraction = 1;
-            // Every velocity node imposed: the pressure Laplacian (weight
-            // solid_smoothing) continues the fluid's pressure smoothly.
+            // Cells with few free velocity nodes leave pressure modes that
+            // no free velocity sees; the pressure Laplacian (weight
+            // solid_smoothing, growing with the imposed fraction) makes
+            // them continue the fluid's pressure smoothly.
             double solid_smoothing = 0;
             if (!rigid_dof_grain.empty())
               {

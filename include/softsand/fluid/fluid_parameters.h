@@ -32,10 +32,12 @@ namespace softsand
       /// Rigid nodes: nodes within radius + offset * (node spacing) of a
       /// grain centre are constrained (dimensionless offset).
       double rigid_node_offset = 0.25;
-      /// Rigid nodes: weight alpha of the pressure Laplacian, alpha h^2 / mu,
-      /// added to the continuity rows in cells whose velocity nodes are
-      /// all imposed (dimensionless; 0: pin those pressures instead).
-      double rigid_node_pressure_smoothing = 1e-2;
+      /// Rigid nodes: weight alpha of the pressure Laplacian, alpha h^2 / mu
+      /// times (imposed fraction of the cell's velocity nodes)^4, added to
+      /// the continuity rows of cells with rigid nodes, so that pressure
+      /// modes no free velocity sees stay smooth (dimensionless; 0: pin
+      /// the pressure of wholly imposed cells instead).
+      double rigid_node_pressure_smoothing = 1e-4;
       /// Penalization: constrain the velocity nodes of cells wholly inside
       /// a grain (the Theta -> infinity limit there), penalize cut cells.
       bool constrain_grain_interiors = true;

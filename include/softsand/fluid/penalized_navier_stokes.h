@@ -322,9 +322,10 @@ namespace softsand
                fluid_parameters.solid_model ==
                  FluidParameters::SolidModel::rigid_nodes;
       }
-      /// Rigid nodes, matrix-based solver: smooth the pressure of cells
-      /// whose velocity nodes are all imposed (see FluidParameters) rather
-      /// than pin it.
+      /// Rigid nodes, matrix-based solves: smooth the pressure of cells
+      /// whose velocity nodes are (nearly) all imposed (see
+      /// FluidParameters) rather than pin it. The matrix-free operator has
+      /// no pressure-pressure block: its steady solves keep the pins.
       bool
       smooth_solid_pressure() const
       {
@@ -332,8 +333,7 @@ namespace softsand
         return fluid_parameters.solid_model ==
                  FluidParameters::SolidModel::rigid_nodes &&
                fluid_parameters.rigid_node_pressure_smoothing > 0 &&
-               solver_parameters.linear_solver !=
-                 SolverParameters::LinearSolver::matrix_free;
+               !use_matrix_free(Assembly::steady_stokes);
       }
       /// Whether velocity dof @p i is imposed: rigid, Dirichlet, or hanging
       /// on rigid parents only (make_constraints() must have run).
