@@ -287,16 +287,17 @@ namespace softsand
               if (rigid_dof_grain.count(parent))
                 hanging_rigid_parents[line.index].emplace_back(parent, weight);
 
-          // A pressure node all of whose cells have every velocity node
-          // rigid meets no free velocity in div: it is undetermined. Pin it
-          // (p = 0) or FGMRES crawls through one null vector per node,
-          // unless the pressure of such cells is smoothed (assemble()).
-          // Only locally active dofs: their cells are all owned or ghost.
+          // Smoothed (assemble()): every pressure node is determined.
           if (smooth_solid_pressure())
             {
               constraints.close();
               return;
             }
+          // Otherwise a pressure node all of whose cells have every
+          // velocity node rigid meets no free velocity in div: it is
+          // undetermined. Pin it (p = 0) or FGMRES crawls through one null
+          // vector per node. Only locally active dofs: their cells are all
+          // owned or ghost.
           const IndexSet active = DoFTools::extract_locally_active_dofs(dof_handler);
           std::set<types::global_dof_index> free_pressure, solid_pressure;
           std::vector<types::global_dof_index> dof_indices(
