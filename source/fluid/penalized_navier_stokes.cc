@@ -597,6 +597,7 @@ namespace softsand
       Vector<double>              force_value(dim);
 
       const bool first_order = (bdf_order == 1);
+      const bool smooth      = smooth_solid_pressure();
 
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -668,11 +669,12 @@ namespace softsand
                     {
                       ++n_velocity;
                       n_rigid += rigid_dof_grain.count(dof_indices[k]);
-                      n_fixed += is_fixed_velocity(dof_indices[k]);
+                      if (smooth)
+                        n_fixed += is_fixed_velocity(dof_indices[k]);
                     }
                 free_fraction =
                   std::max(1e-4, std::pow(1. - double(n_rigid) / n_velocity, 4));
-                if (smooth_solid_pressure() && n_rigid > 0)
+                if (smooth && n_rigid > 0)
                   solid_smoothing =
                     fluid_parameters.rigid_node_pressure_smoothing * h * h /
                     mu * std::pow(double(n_fixed) / n_velocity, 4);
