@@ -48,6 +48,18 @@ def kozeny_carman(phi, d):
     return phi ** 3 * d * d / (180 * (1 - phi) ** 2)
 
 
+def wall_factor(phi, d, height, thickness):
+    """Carman's hydraulic-radius argument with the box walls counted: the
+    no-slip plates (thickness apart) and side walls (height apart) add
+    2 / thickness + 2 / height of wetted surface per bed volume to the
+    grains' 6 (1 - phi) / d, so K_KC is divided by M^2 with
+    M = 1 + (2 / thickness + 2 / height) d / (6 (1 - phi)) (the form of
+    Mehta and Hawley's wall correction, for plates). A single layer between
+    plates 1.1 d apart: M^2 = 2.9."""
+    m = 1 + (2 / thickness + 2 / height) * d / (6 * (1 - phi))
+    return m * m
+
+
 def make_pack(workdir, d, friction, pressure, seed):
     """Pour and compact a pack; returns (pack file, piston height)."""
     name = 'pack_d%g_mu%g_p%g_s%d' % (d, friction, pressure, seed)
@@ -82,7 +94,7 @@ def pack_porosity(pack, height, thickness):
     return 1.0 - solid / (1e-3 * height * thickness)
 
 
-def permeability(workdir, name, pack, height, thickness, n, d, max_overlap=0.6):
+def permeability(workdir, name, pack, height, thickness, n, d, max_overlap=0.6, extra=()):
     text = open(os.path.join(ROOT, 'parameters', 'pack_permeability.prm')).read()
     q = 1e-3  # superficial velocity (m/s)
     row, wall, err = prm_tools.run(
@@ -90,7 +102,8 @@ def permeability(workdir, name, pack, height, thickness, n, d, max_overlap=0.6):
         [('grains/file', pack), ('grains/max overlap ratio', max_overlap),
          ('mesh/upper corner', '1.2e-3, %.9g, %.9g' % (height, thickness)),
          ('mesh/cells per diameter', n),
-         ('boundary conditions/x min/flow rate', '%.9g' % (q * height * thickness))])
+         ('boundary conditions/x min/flow rate', '%.9g' % (q * height * thickness))]
+        + list(extra))
     if row is None:
         return None, wall, err
     return row, wall, None
@@ -156,13 +169,20 @@ def main():
                     help='grains/max overlap ratio for the packs (the soft '
                          'grains compacted at 100 kPa overlap by 0.7-0.9 R*)')
     ap.add_argument('--workdir', default=os.path.join(ROOT, 'output/study_pack_permeability'))
+    ap.add_argument('--set', action='append', default=[], metavar='PATH=VALUE',
+                    help='override an entry of pack_permeability.prm, e.g. '
+                         '"fluid/solid model=rigid nodes" (repeatable)')
+    ap.add_argument('--tag', default='',
+                    help='suffix of the run names, to keep runs with --set apart')
     a = ap.parse_args()
+    extra = [tuple(s.split('=', 1)) for s in a.set]
     if a.study == 'plot':
         plot(a.workdir, a.plot)
         return
     print('| pack (d, friction, p) | N | cells | DoFs | FGMRES | wall (s) | K (m^2) | '
-          'porosity, cells vf > 0.9 | porosity of the grains | K/K_KC (cells) | K/K_KC (grains) |')
-    print('|---|---|---|---|---|---|---|---|---|---|---|')
+          'porosity, cells vf > 0.9 | porosity of the grains | K/K_KC (cells) | K/K_KC (grains) | '
+          'K/K_KC with walls (grains) |')
+    print('|---|---|---|---|---|---|---|---|---|---|---|---|')
     if a.study == 'refinement':
         packs = PACKS[:1]
         ns = (a.n or '4,6,8').split(',')
@@ -172,9 +192,9 @@ def main():
     for d, friction, pressure, seed in packs:
         pack, height, thickness = make_pack(a.workdir, d, friction, pressure, seed)
         for n in ns:
-            name = 'K_d%g_mu%g_p%g_N%s' % (d, friction, pressure, n)
+            name = 'K_d%g_mu%g_p%g_N%s%s' % (d, friction, pressure, n, a.tag)
             row, wall, err = permeability(a.workdir, name, pack, height, thickness, n, d,
-                                          a.max_overlap)
+                                          a.max_overlap, extra)
             label = '%g mm, %g, %g kPa' % (d * 1e3, friction, pressure / 1e3)
             if row is None:
                 print('| %s | %s | failed: %s |' % (label, n, err), flush=True)
@@ -187,9 +207,11 @@ def main():
             # counts the grain-free buffers.
             pv = pack_porosity(pack, height, thickness)
             pc = row.get('slab_porosity_cells', row['porosity_cells'])
-            print('| %s | %s | %d | %d | %d | %.0f | %.3e | %.3f | %.3f | %.2f | %.2f |'
+            kw = kozeny_carman(pv, d) / wall_factor(pv, d, height, thickness)
+            print('| %s | %s | %d | %d | %d | %.0f | %.3e | %.3f | %.3f | %.2f | %.2f | %.2f |'
                   % (label, n, row['cells'], row['dofs'], row['linear_iterations'], wall, k,
-                     pc, pv, k / kozeny_carman(pc, d), k / kozeny_carman(pv, d)), flush=True)
+                     pc, pv, k / kozeny_carman(pc, d), k / kozeny_carman(pv, d), k / kw),
+                  flush=True)
 
 
 if __name__ == '__main__':

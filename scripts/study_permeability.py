@@ -27,12 +27,16 @@ def main():
     ap.add_argument('--schur', default='cahouet chabard',
                     help="fluid solver/schur complement ('discrete brinkman' "
                          "for near-touching grains, with penalization)")
+    ap.add_argument('--void-fraction-model', default='cell average',
+                    help="coupling/void fraction model with penalization "
+                         "('cell majority' or 'quadrature point')")
     ap.add_argument('--workdir', default='output/study_permeability')
     a = ap.parse_args()
     base = open(os.path.join(ROOT, 'parameters', 'sc_permeability.prm')).read()
     softsand = os.path.join(ROOT, 'build', 'softsand')
     s, mu, U = 2e-4, 1e-3, 1e-4
-    print('Solid model: %s, Schur complement: %s\n' % (a.solid_model, a.schur))
+    print('Solid model: %s, Schur complement: %s, void fraction model: %s\n'
+          % (a.solid_model, a.schur, a.void_fraction_model))
     print('| c | N | cells | DoFs | iterations | wall [s] | K [m^2] | '
           'K Zick-Homsy | error | K Kozeny-Carman |')
     print('|---|---|---|---|---|---|---|---|---|---|')
@@ -48,7 +52,8 @@ def main():
                 [('grains/diameter', '%.6g' % d),
                  ('mesh/cells per diameter', '%g' % n),
                  ('fluid/solid model', a.solid_model),
-                 ('fluid solver/schur complement', a.schur)])
+                 ('fluid solver/schur complement', a.schur),
+                 ('coupling/void fraction model', a.void_fraction_model)])
             if row is None:
                 print('| %g | %g | failed: %s |' % (c, n, err))
                 continue

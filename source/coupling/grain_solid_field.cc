@@ -14,10 +14,15 @@ namespace softsand
       prm.declare_entry(
         "void fraction model",
         "cell average",
-        Patterns::Selection("cell average|quadrature point"),
+        Patterns::Selection("cell average|cell majority|quadrature point"),
         "cell average: the paper's cell void fraction (covered volume "
-        "fraction, sub-sampled); quadrature point: the exact solid indicator "
-        "at each quadrature point.");
+        "fraction, sub-sampled); cell majority: a cut cell is solid (vf = 0) "
+        "where grains cover at least half of it and fluid otherwise (with a "
+        "large theta the cell average makes every cut cell solid, and the Q2 "
+        "nodes on their faces put the no-slip surface half a cell outside "
+        "the grain on average; the majority rule puts it on the grain); "
+        "quadrature point: the exact solid indicator at each quadrature "
+        "point. The porosity statistics always use the cell average.");
       prm.declare_entry("cell average subdivisions",
                         "4",
                         Patterns::Integer(1, 16),
@@ -31,9 +36,10 @@ namespace softsand
     VoidFractionParameters::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("coupling");
-      model = prm.get("void fraction model") == "cell average" ?
-                Model::cell_average :
-                Model::quadrature_point;
+      const std::string m = prm.get("void fraction model");
+      model = m == "cell average"  ? Model::cell_average :
+              m == "cell majority" ? Model::cell_majority :
+                                     Model::quadrature_point;
       subdivisions = prm.get_integer("cell average subdivisions");
       prm.leave_subsection();
     }
@@ -155,7 +161,9 @@ namespace softsand
         evaluate_exact(cell, points, void_fraction, solid_velocity, solid_index);
       else
         {
-          const double solid = cell_solid_fraction(cell, dominant);
+          double solid = cell_solid_fraction(cell, dominant);
+          if (parameters.model == VoidFractionParameters::Model::cell_majority)
+            solid = (solid >= 0.5 ? 1. : 0.);
           if (solid == 0 || dominant < 0)
             return;
           for (unsigned int q = 0; q < n_q; ++q)

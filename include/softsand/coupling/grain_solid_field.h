@@ -16,14 +16,21 @@ namespace softsand
      * How grains are seen by the fluid mesh (DESIGN.md section 3).
      * quadrature point: the exact solid indicator at each quadrature point;
      * cell average: the paper's cell void fraction, the covered fraction of
-     * the cell (sub-sampled), constant over the cell.
+     * the cell (sub-sampled), constant over the cell;
+     * cell majority: the same staircase, but a cut cell is solid (vf = 0)
+     * only where grains cover at least half of it and fluid otherwise. With
+     * a large Theta the cell average makes every cut cell solid, and on Q2
+     * elements the nodes on the faces of those cells are held too: the
+     * no-slip surface sits on average half a cell outside the grain. The
+     * majority rule puts it on the grain on average.
      */
     struct VoidFractionParameters
     {
       enum class Model
       {
         quadrature_point,
-        cell_average
+        cell_average,
+        cell_majority
       };
       Model        model        = Model::cell_average;
       unsigned int subdivisions = 4;
