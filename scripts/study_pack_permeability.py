@@ -156,6 +156,52 @@ def plot(workdir, path):
     print('plot:', path)
 
 
+def plot_grain_porosity(workdir, tag, path):
+    """Runs named with --tag: K against the grains' porosity, with
+    Kozeny-Carman with and without the walls' surface."""
+    points = []
+    for d, friction, pressure, seed in PACKS:
+        name = 'K_d%g_mu%g_p%g_N6%s' % (d, friction, pressure, tag)
+        pack_dir = os.path.join(workdir, 'pack_d%g_mu%g_p%g_s%d' % (d, friction, pressure, seed))
+        if not os.path.exists(os.path.join(workdir, name, 'statistics.txt')):
+            continue
+        rows = prm_tools.read_statistics(os.path.join(workdir, name))
+        if not rows:
+            continue
+        k = rows[-1]['permeability']
+        height = -prm_tools.read_statistics(pack_dir)[-1]['wall_0_position']
+        pv = pack_porosity(os.path.join(pack_dir, 'pack.txt'), height, 1.1 * d)
+        kw = kozeny_carman(pv, d) / wall_factor(pv, d, height, 1.1 * d)
+        points.append((name, d, pv, k, k / kozeny_carman(pv, d), k / kw))
+    if not points:
+        print('no finished runs with tag %s' % tag)
+        return
+    print('| run | porosity of the grains | K (m^2) | K / K_KC | K / K_KC with walls |')
+    print('|---|---|---|---|---|')
+    for name, d, pv, k, r, rw in points:
+        print('| %s | %.3f | %.3e | %.2f | %.2f |' % (name, pv, k, r, rw))
+    rws = [p[5] for p in points]
+    print('\n%d packs: K / K_KC with walls from %.2f to %.2f (geometric mean %.2f)'
+          % (len(rws), min(rws), max(rws), math.exp(sum(map(math.log, rws)) / len(rws))))
+    plt = prm_tools.pyplot()
+    if plt is None:
+        return
+    fig, ax = plt.subplots(figsize=(6, 4))
+    ax.scatter([p[2] for p in points], [p[3] / p[1] ** 2 for p in points], label='N = 6%s' % tag)
+    phis = [0.38 + 0.005 * i for i in range(35)]
+    ax.plot(phis, [kozeny_carman(p, 1.0) for p in phis], 'b--', label='Kozeny-Carman')
+    ax.plot(phis, [kozeny_carman(p, 1.0) / wall_factor(p, 1.0, 1.1, 10.0) for p in phis], 'k:',
+            label='Kozeny-Carman with the walls (t = 1.1 d, h = 10 d)')
+    ax.set_yscale('log')
+    ax.set_xlabel('porosity of the grains')
+    ax.set_ylabel('K / d^2')
+    ax.set_title('Pack permeability, %s' % tag.strip('_'))
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print('plot:', path)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument('study', choices=['refinement', 'porosity', 'plot'])
@@ -177,7 +223,10 @@ def main():
     a = ap.parse_args()
     extra = [tuple(s.split('=', 1)) for s in a.set]
     if a.study == 'plot':
-        plot(a.workdir, a.plot)
+        if a.tag:
+            plot_grain_porosity(a.workdir, a.tag, a.plot)
+        else:
+            plot(a.workdir, a.plot)
         return
     print('| pack (d, friction, p) | N | cells | DoFs | FGMRES | wall (s) | K (m^2) | '
           'porosity, cells vf > 0.9 | porosity of the grains | K/K_KC (cells) | K/K_KC (grains) | '
