@@ -187,7 +187,7 @@ def plot_grain_porosity(workdir, tag, path):
     if plt is None:
         return
     fig, ax = plt.subplots(figsize=(6, 4))
-    ax.scatter([p[2] for p in points], [p[3] / p[1] ** 2 for p in points], label='N = 6%s' % tag)
+    ax.scatter([p[2] for p in points], [p[3] / p[1] ** 2 for p in points], label='N = 6, %s' % tag.strip('_'))
     phis = [0.38 + 0.005 * i for i in range(35)]
     ax.plot(phis, [kozeny_carman(p, 1.0) for p in phis], 'b--', label='Kozeny-Carman')
     ax.plot(phis, [kozeny_carman(p, 1.0) / wall_factor(p, 1.0, 1.1, 10.0) for p in phis], 'k:',

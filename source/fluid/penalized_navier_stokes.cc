@@ -288,39 +288,40 @@ namespace softsand
                 hanging_rigid_parents[line.index].emplace_back(parent, weight);
 
           // Smoothed (assemble()): every pressure node is determined.
-          if (smooth_solid_pressure())
-            {
-              constraints.close();
-              return;
-            }
-          // Otherwise a pressure node all of whose cells have every
-          // velocity node rigid meets no free velocity in div: it is
-          // undetermined. Pin it (p = 0) or FGMRES crawls through one null
-          // vector per node. Only locally active dofs: their cells are all
-          // owned or ghost.
-          const IndexSet active = DoFTools::extract_locally_active_dofs(dof_handler);
-          std::set<types::global_dof_index> free_pressure, solid_pressure;
-          std::vector<types::global_dof_index> dof_indices(
-            fe.n_dofs_per_cell());
-          for (const auto &cell : dof_handler.active_cell_iterators())
-            if (!cell->is_artificial())
-              {
-                cell->get_dof_indices(dof_indices);
-                bool solid_cell = true;
-                for (unsigned int k = 0; k < dof_indices.size() && solid_cell; ++k)
-                  if (fe.system_to_component_index(k).first < dim)
-                    solid_cell = is_fixed_velocity(dof_indices[k]);
-                for (unsigned int k = 0; k < dof_indices.size(); ++k)
-                  if (fe.system_to_component_index(k).first == dim)
-                    (solid_cell ? solid_pressure : free_pressure)
-                      .insert(dof_indices[k]);
-              }
-          for (const auto i : solid_pressure)
-            if (free_pressure.count(i) == 0 && active.is_element(i) &&
-                !constraints.is_constrained(i))
-              constraints.add_line(i);
+          if (!smooth_solid_pressure())
+            pin_undetermined_solid_pressures();
         }
       constraints.close();
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::pin_undetermined_solid_pressures()
+    {
+      // Only locally active dofs: their cells are all owned or ghost.
+      // Pinning them spares FGMRES one null vector per node.
+      const IndexSet active = DoFTools::extract_locally_active_dofs(dof_handler);
+      std::set<types::global_dof_index> free_pressure, solid_pressure;
+      std::vector<types::global_dof_index> dof_indices(
+        fe.n_dofs_per_cell());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (!cell->is_artificial())
+          {
+            cell->get_dof_indices(dof_indices);
+            bool solid_cell = true;
+            for (unsigned int k = 0; k < dof_indices.size() && solid_cell; ++k)
+              if (fe.system_to_component_index(k).first < dim)
+                solid_cell = is_fixed_velocity(dof_indices[k]);
+            for (unsigned int k = 0; k < dof_indices.size(); ++k)
+              if (fe.system_to_component_index(k).first == dim)
+                (solid_cell ? solid_pressure : free_pressure)
+                  .insert(dof_indices[k]);
+          }
+      for (const auto i : solid_pressure)
+        if (free_pressure.count(i) == 0 && active.is_element(i) &&
+            !constraints.is_constrained(i))
+          constraints.add_line(i);
     }
 
 

@@ -339,6 +339,11 @@ namespace softsand
       /// on rigid parents only (make_constraints() must have run).
       bool
       is_fixed_velocity(const types::global_dof_index i) const;
+      /// Without the smoothing, a pressure node all of whose cells have
+      /// every velocity node imposed meets no free velocity in div: pin it
+      /// (p = 0) in #constraints (not yet closed).
+      void
+      pin_undetermined_solid_pressures();
       unsigned int
       solve_linear(const bool convection);
       /// The pressure-Laplacian coefficient 1/beta of the Schur
