@@ -58,7 +58,7 @@ def run_one(args, text, p):
     if args.steps is not None:
         overrides.append(('simulation control/max time steps',
                           '%d' % args.steps))
-    overrides += [tuple(s.split('=', 1)) for s in args.set]
+    overrides += prm_tools.parse_set(args.set)
     # As prm_tools.run, but the grains and the fracture map of the last
     # step are written (a large output interval: the last step only), and
     # the grains at the end in <outdir>/pack_end.txt (dem/save pack: the
@@ -136,9 +136,7 @@ def main():
                         'right-hand side); the moving cohesive pack stalls '
                         'FGMRES near 1.3e-8 absolute, above 1e-6 relative '
                         'for p_i <= 8 kPa')
-    a.add_argument('--set', action='append', default=[], metavar='PATH=VALUE',
-                   help='override any entry of the scene, e.g. '
-                        '"mesh/coarse cells=45, 45, 8" (repeatable)')
+    prm_tools.add_set_argument(a, 'the scene')
     a.add_argument('--summarize', action='store_true',
                    help='do not run: tabulate the statistics already in '
                         '<workdir> (unfinished runs: their last row)')

@@ -35,6 +35,25 @@ def set_entry(text, path, value):
     return '\n'.join(out) + '\n'
 
 
+def add_set_argument(parser, what):
+    """--set PATH=VALUE (repeatable): override an entry of @p what."""
+    parser.add_argument('--set', action='append', default=[], metavar='PATH=VALUE',
+                        help='override an entry of %s, e.g. '
+                             '"mesh/cells per diameter=6" (repeatable)' % what)
+
+
+def parse_set(values):
+    """The --set values as (path, value) pairs for set_entry."""
+    pairs = []
+    for v in values:
+        if '=' not in v:
+            raise SystemExit("--set '%s': expected PATH=VALUE, e.g. "
+                             "'fluid/theta=1e6'" % v)
+        path, value = v.split('=', 1)
+        pairs.append((path.strip(), value.strip()))
+    return pairs
+
+
 def read_statistics(directory):
     """Rows of <directory>/statistics.txt as dicts (name -> float)."""
     with open(os.path.join(directory, 'statistics.txt')) as f:

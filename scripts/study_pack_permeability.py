@@ -48,22 +48,38 @@ def kozeny_carman(phi, d):
     return phi ** 3 * d * d / (180 * (1 - phi) ** 2)
 
 
-def wall_factor(phi, d, height, thickness):
-    """Carman's hydraulic-radius argument with the box walls counted: the
-    no-slip plates (thickness apart) and side walls (height apart) add
+def kozeny_carman_walls(phi, d, height, thickness):
+    """Kozeny-Carman with the box walls counted (Carman's hydraulic radius):
+    the no-slip plates (thickness apart) and side walls (height apart) add
     2 / thickness + 2 / height of wetted surface per bed volume to the
     grains' 6 (1 - phi) / d, so K_KC is divided by M^2 with
     M = 1 + (2 / thickness + 2 / height) d / (6 (1 - phi)) (the form of
     Mehta and Hawley's wall correction, for plates). A single layer between
     plates 1.1 d apart: M^2 = 2.9."""
     m = 1 + (2 / thickness + 2 / height) * d / (6 * (1 - phi))
-    return m * m
+    return kozeny_carman(phi, d) / (m * m)
+
+
+def pack_dir(workdir, d, friction, pressure, seed):
+    return os.path.join(workdir, 'pack_d%g_mu%g_p%g_s%d' % (d, friction, pressure, seed))
+
+
+def run_name(d, friction, pressure, n, tag):
+    return 'K_d%g_mu%g_p%g_N%s%s' % (d, friction, pressure, n, tag)
+
+
+def saved_pack(out, d):
+    """A pack poured before into @p out: (pack file, piston height, box
+    thickness)."""
+    return (os.path.join(out, 'pack.txt'),
+            -prm_tools.read_statistics(out)[-1]['wall_0_position'], 1.1 * d)
 
 
 def make_pack(workdir, d, friction, pressure, seed):
-    """Pour and compact a pack; returns (pack file, piston height)."""
-    name = 'pack_d%g_mu%g_p%g_s%d' % (d, friction, pressure, seed)
-    out = os.path.join(workdir, name)
+    """Pour and compact a pack; returns (pack file, piston height, box
+    thickness)."""
+    out = pack_dir(workdir, d, friction, pressure, seed)
+    name = os.path.basename(out)
     text = open(os.path.join(ROOT, 'parameters', 'pour_and_compact.prm')).read()
     for path, value in [('grains/min diameter', 0.9 * d), ('grains/max diameter', 1.1 * d),
                         ('grains/seed', seed), ('mesh/upper corner', '1e-3, 2e-3, %g' % (1.1 * d)),
@@ -78,8 +94,7 @@ def make_pack(workdir, d, friction, pressure, seed):
     pack = os.path.join(out, 'pack.txt')
     if os.path.exists(pack) and open(prm).read() == text:
         # Poured before with the same parameters: reuse it.
-        rows = prm_tools.read_statistics(out)
-        return pack, -rows[-1]['wall_0_position'], 1.1 * d
+        return saved_pack(out, d)
     open(prm, 'w').write(text)
     log = subprocess.run([SOFTSAND, prm], capture_output=True, text=True, check=True).stdout
     height = -float(re.search(r'wall_0_position\s+(\S+)', log).group(1))
@@ -161,18 +176,17 @@ def plot_grain_porosity(workdir, tag, path):
     Kozeny-Carman with and without the walls' surface."""
     points = []
     for d, friction, pressure, seed in PACKS:
-        name = 'K_d%g_mu%g_p%g_N6%s' % (d, friction, pressure, tag)
-        pack_dir = os.path.join(workdir, 'pack_d%g_mu%g_p%g_s%d' % (d, friction, pressure, seed))
+        name = run_name(d, friction, pressure, 6, tag)
         if not os.path.exists(os.path.join(workdir, name, 'statistics.txt')):
             continue
         rows = prm_tools.read_statistics(os.path.join(workdir, name))
         if not rows:
             continue
         k = rows[-1]['permeability']
-        height = -prm_tools.read_statistics(pack_dir)[-1]['wall_0_position']
-        pv = pack_porosity(os.path.join(pack_dir, 'pack.txt'), height, 1.1 * d)
-        kw = kozeny_carman(pv, d) / wall_factor(pv, d, height, 1.1 * d)
-        points.append((name, d, pv, k, k / kozeny_carman(pv, d), k / kw))
+        pack, height, thickness = saved_pack(pack_dir(workdir, d, friction, pressure, seed), d)
+        pv = pack_porosity(pack, height, thickness)
+        points.append((name, d, pv, k, k / kozeny_carman(pv, d),
+                       k / kozeny_carman_walls(pv, d, height, thickness)))
     if not points:
         print('no finished runs with tag %s' % tag)
         return
@@ -190,7 +204,7 @@ def plot_grain_porosity(workdir, tag, path):
     ax.scatter([p[2] for p in points], [p[3] / p[1] ** 2 for p in points], label='N = 6, %s' % tag.strip('_'))
     phis = [0.38 + 0.005 * i for i in range(35)]
     ax.plot(phis, [kozeny_carman(p, 1.0) for p in phis], 'b--', label='Kozeny-Carman')
-    ax.plot(phis, [kozeny_carman(p, 1.0) / wall_factor(p, 1.0, 1.1, 10.0) for p in phis], 'k:',
+    ax.plot(phis, [kozeny_carman_walls(p, 1.0, 10.0, 1.1) for p in phis], 'k:',
             label='Kozeny-Carman with the walls (t = 1.1 d, h = 10 d)')
     ax.set_yscale('log')
     ax.set_xlabel('porosity of the grains')
@@ -215,13 +229,11 @@ def main():
                     help='grains/max overlap ratio for the packs (the soft '
                          'grains compacted at 100 kPa overlap by 0.7-0.9 R*)')
     ap.add_argument('--workdir', default=os.path.join(ROOT, 'output/study_pack_permeability'))
-    ap.add_argument('--set', action='append', default=[], metavar='PATH=VALUE',
-                    help='override an entry of pack_permeability.prm, e.g. '
-                         '"fluid/solid model=rigid nodes" (repeatable)')
+    prm_tools.add_set_argument(ap, 'pack_permeability.prm')
     ap.add_argument('--tag', default='',
                     help='suffix of the run names, to keep runs with --set apart')
     a = ap.parse_args()
-    extra = [tuple(s.split('=', 1)) for s in a.set]
+    extra = prm_tools.parse_set(a.set)
     if a.study == 'plot':
         if a.tag:
             plot_grain_porosity(a.workdir, a.tag, a.plot)
@@ -241,7 +253,7 @@ def main():
     for d, friction, pressure, seed in packs:
         pack, height, thickness = make_pack(a.workdir, d, friction, pressure, seed)
         for n in ns:
-            name = 'K_d%g_mu%g_p%g_N%s%s' % (d, friction, pressure, n, a.tag)
+            name = run_name(d, friction, pressure, n, a.tag)
             row, wall, err = permeability(a.workdir, name, pack, height, thickness, n, d,
                                           a.max_overlap, extra)
             label = '%g mm, %g, %g kPa' % (d * 1e3, friction, pressure / 1e3)
@@ -256,7 +268,7 @@ def main():
             # counts the grain-free buffers.
             pv = pack_porosity(pack, height, thickness)
             pc = row.get('slab_porosity_cells', row['porosity_cells'])
-            kw = kozeny_carman(pv, d) / wall_factor(pv, d, height, thickness)
+            kw = kozeny_carman_walls(pv, d, height, thickness)
             print('| %s | %s | %d | %d | %d | %.0f | %.3e | %.3f | %.3f | %.2f | %.2f | %.2f |'
                   % (label, n, row['cells'], row['dofs'], row['linear_iterations'], wall, k,
                      pc, pv, k / kozeny_carman(pc, d), k / kozeny_carman(pv, d), k / kw),

@@ -30,14 +30,19 @@ main(int argc, char **argv)
   const double a       = s * std::cbrt(3 * c / (4 * M_PI));
   const double dp_ref  = 6 * M_PI * mu * a * 7.442 * U / (s * s);
   const double k_ref   = mu * U * s / dp_ref;
+  // The array of this solid fraction at @p n cells per diameter, plus @p extra.
+  const auto scene = [&](const unsigned int n, const std::string &extra) {
+    std::ostringstream text;
+    text << base.str() << "subsection grains\n set diameter = "
+         << std::setprecision(10) << 2 * a
+         << "\nend\nsubsection mesh\n set cells per diameter = " << n
+         << "\nend\n"
+         << extra;
+    return run_scene<3>(text.str());
+  };
   for (const unsigned int n : {4u, 8u})
     {
-      std::ostringstream text;
-      text << base.str() << "subsection grains\n set diameter = "
-           << std::setprecision(10) << 2 * a
-           << "\nend\nsubsection mesh\n set cells per diameter = " << n
-           << "\nend\n";
-      const auto r = run_scene<3>(text.str());
+      const auto r = scene(n, "");
       deallog << "N = " << n << ": K / K_Zick-Homsy = " << std::setprecision(2)
               << r.at("permeability") / k_ref
               << ", mean grain drag / (dp s^2) = "
@@ -47,16 +52,13 @@ main(int argc, char **argv)
     }
   for (const std::string model : {"cell average", "cell majority"})
     {
-      std::ostringstream text;
-      text << base.str() << "subsection grains\n set diameter = "
-           << std::setprecision(10) << 2 * a
-           << "\nend\nsubsection mesh\n set cells per diameter = 8\nend\n"
-           << "subsection fluid\n set solid model = penalization\nend\n"
-           << "subsection fluid solver\n set schur complement = discrete "
-              "brinkman\nend\n"
-           << "subsection coupling\n set void fraction model = " << model
-           << "\nend\n";
-      const auto r = run_scene<3>(text.str());
+      const auto r = scene(
+        8,
+        "subsection fluid\n set solid model = penalization\nend\n"
+        "subsection fluid solver\n set schur complement = discrete "
+        "brinkman\nend\n"
+        "subsection coupling\n set void fraction model = " +
+          model + "\nend\n");
       deallog << "penalization, " << model
               << ", N = 8: K / K_Zick-Homsy = " << std::setprecision(2)
               << r.at("permeability") / k_ref << std::setprecision(6)
