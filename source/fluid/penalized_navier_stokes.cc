@@ -449,32 +449,10 @@ namespace softsand
       // Moving solids: a sparsity that does not depend on where they are.
       make_constraints(!moving_solids);
 
-      {
-        system_matrix.clear();
-        Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
-        // Velocity components couple through convection (Newton) terms.
-        for (unsigned int c = 0; c < dim + 1; ++c)
-          for (unsigned int d = 0; d < dim + 1; ++d)
-            coupling[c][d] = (c == dim && d == dim && !smooth_solid_pressure()) ?
-                               DoFTools::none :
-                               DoFTools::always;
-        BlockDynamicSparsityPattern dsp(relevant_partitioning);
-        DoFTools::make_sparsity_pattern(
-          dof_handler, coupling, dsp, constraints, false);
-        // Moving solids pin pressure nodes they enclose (p = 0) that this
-        // pattern saw free: those rows need the diagonal that the
-        // pressure-pressure block lacks. Every locally relevant row: a
-        // rank assembling a cell whose pinned node another rank owns
-        // writes that diagonal too (a grain on a rank boundary).
-        if (moving_solids)
-          for (const auto i : relevant)
-            dsp.add(i, i);
-        SparsityTools::distribute_sparsity_pattern(dsp,
-                                                   owned,
-                                                   mpi_communicator,
-                                                   relevant);
-        system_matrix.reinit(owned_partitioning, dsp, mpi_communicator);
-      }
+      velocity_components_coupled =
+        velocity_components_coupled ||
+        couples_velocity_components(Assembly::steady_stokes);
+      reinit_system_matrix();
       {
         pressure_mass_matrix.clear();
         pressure_laplace_matrix.clear();
@@ -516,6 +494,57 @@ namespace softsand
 
 
     template <int dim>
+    bool
+    PenalizedNavierStokes<dim>::couples_velocity_components(
+      const Assembly kind) const
+    {
+      return solver_parameters.grad_div > 0 ||
+             solver_parameters.grad_div_cell_factor > 0 ||
+             kind == Assembly::steady_newton;
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::reinit_system_matrix()
+    {
+      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      const IndexSet  relevant =
+        DoFTools::extract_locally_relevant_dofs(dof_handler);
+      system_matrix.clear();
+      Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
+      for (unsigned int c = 0; c < dim + 1; ++c)
+        for (unsigned int d = 0; d < dim + 1; ++d)
+          {
+            const bool velocity_pair = (c < dim && d < dim);
+            if (c == dim && d == dim)
+              coupling[c][d] =
+                smooth_solid_pressure() ? DoFTools::always : DoFTools::none;
+            else if (velocity_pair && c != d && !velocity_components_coupled)
+              coupling[c][d] = DoFTools::none;
+            else
+              coupling[c][d] = DoFTools::always;
+          }
+      BlockDynamicSparsityPattern dsp(relevant_partitioning);
+      DoFTools::make_sparsity_pattern(
+        dof_handler, coupling, dsp, constraints, false);
+      // Moving solids pin pressure nodes they enclose (p = 0) that this
+      // pattern saw free: those rows need the diagonal that the
+      // pressure-pressure block lacks. Every locally relevant row: a
+      // rank assembling a cell whose pinned node another rank owns
+      // writes that diagonal too (a grain on a rank boundary).
+      if (moving_solids)
+        for (const auto i : relevant)
+          dsp.add(i, i);
+      SparsityTools::distribute_sparsity_pattern(dsp,
+                                                 owned,
+                                                 mpi_communicator,
+                                                 relevant);
+      system_matrix.reinit(owned_partitioning, dsp, mpi_communicator);
+    }
+
+
+    template <int dim>
     double
     PenalizedNavierStokes<dim>::brinkman_coefficient(
       const double vf,
@@ -538,6 +567,18 @@ namespace softsand
       TimerOutput::Scope t(timer,
                            cell_callback == nullptr ? "fluid: assemble" :
                                                       "fluid: reactions");
+      if (cell_callback == nullptr && couples_velocity_components(kind) &&
+          !velocity_components_coupled)
+        {
+          // The first Newton step: the pattern needs the entries between
+          // velocity components. Its constraints are those of setup_dofs().
+          velocity_components_coupled = true;
+          if (moving_solids)
+            make_constraints(false);
+          reinit_system_matrix();
+          if (moving_solids)
+            make_constraints();
+        }
       if (cell_callback == nullptr)
         {
           system_matrix           = 0;
