@@ -25,6 +25,40 @@ namespace softsand
 {
   namespace fluid
   {
+    namespace
+    {
+      /// Sparsity of the blocks that @p coupling couples, from
+      /// @p constraints, distributed over the locally relevant rows.
+      template <int dim>
+      BlockDynamicSparsityPattern
+      make_block_pattern(const DoFHandler<dim>              &dof_handler,
+                         const Table<2, DoFTools::Coupling> &coupling,
+                         const AffineConstraints<double>    &constraints,
+                         const std::vector<IndexSet> &relevant_partitioning,
+                         const bool                   moving_solids)
+      {
+        const IndexSet &owned = dof_handler.locally_owned_dofs();
+        const IndexSet  relevant =
+          DoFTools::extract_locally_relevant_dofs(dof_handler);
+        BlockDynamicSparsityPattern dsp(relevant_partitioning);
+        DoFTools::make_sparsity_pattern(
+          dof_handler, coupling, dsp, constraints, false);
+        // Moving solids constrain nodes that this pattern saw free (velocity
+        // nodes; pressure nodes they enclose, pinned to p = 0): those rows
+        // need a diagonal that a block without self-coupling lacks. Every
+        // locally relevant row: a rank assembling a cell whose constrained
+        // node another rank owns writes that diagonal too (a grain on a
+        // rank boundary).
+        if (moving_solids)
+          for (const auto i : relevant)
+            dsp.add(i, i);
+        SparsityTools::distribute_sparsity_pattern(
+          dsp, owned, dof_handler.get_communicator(), relevant);
+        return dsp;
+      }
+    } // namespace
+
+
     template <int dim>
     PenalizedNavierStokes<dim>::PenalizedNavierStokes(
       parallel::distributed::Triangulation<dim> &tria,
@@ -461,19 +495,11 @@ namespace softsand
           for (unsigned int d = 0; d < dim + 1; ++d)
             coupling[c][d] = (c == dim && d == dim) ? DoFTools::always :
                                                       DoFTools::none;
-        BlockDynamicSparsityPattern dsp(relevant_partitioning);
-        DoFTools::make_sparsity_pattern(
-          dof_handler, coupling, dsp, constraints, false);
-        // Moving solids constrain velocity nodes that this pattern saw
-        // free: their rows get a diagonal entry (locally relevant rows,
-        // as above).
-        if (moving_solids)
-          for (const auto i : relevant)
-            dsp.add(i, i);
-        SparsityTools::distribute_sparsity_pattern(dsp,
-                                                   owned,
-                                                   mpi_communicator,
-                                                   relevant);
+        const BlockDynamicSparsityPattern dsp = make_block_pattern(dof_handler,
+                                             coupling,
+                                             constraints,
+                                             relevant_partitioning,
+                                             moving_solids);
         pressure_mass_matrix.reinit(owned_partitioning, dsp, mpi_communicator);
         pressure_laplace_matrix.reinit(owned_partitioning,
                                        dsp,
@@ -508,9 +534,6 @@ namespace softsand
     void
     PenalizedNavierStokes<dim>::reinit_system_matrix()
     {
-      const IndexSet &owned = dof_handler.locally_owned_dofs();
-      const IndexSet  relevant =
-        DoFTools::extract_locally_relevant_dofs(dof_handler);
       system_matrix.clear();
       Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
       for (unsigned int c = 0; c < dim + 1; ++c)
@@ -525,22 +548,13 @@ namespace softsand
             else
               coupling[c][d] = DoFTools::always;
           }
-      BlockDynamicSparsityPattern dsp(relevant_partitioning);
-      DoFTools::make_sparsity_pattern(
-        dof_handler, coupling, dsp, constraints, false);
-      // Moving solids pin pressure nodes they enclose (p = 0) that this
-      // pattern saw free: those rows need the diagonal that the
-      // pressure-pressure block lacks. Every locally relevant row: a
-      // rank assembling a cell whose pinned node another rank owns
-      // writes that diagonal too (a grain on a rank boundary).
-      if (moving_solids)
-        for (const auto i : relevant)
-          dsp.add(i, i);
-      SparsityTools::distribute_sparsity_pattern(dsp,
-                                                 owned,
-                                                 mpi_communicator,
-                                                 relevant);
-      system_matrix.reinit(owned_partitioning, dsp, mpi_communicator);
+      system_matrix.reinit(owned_partitioning,
+                           make_block_pattern(dof_handler,
+                                             coupling,
+                                             constraints,
+                                             relevant_partitioning,
+                                             moving_solids),
+                           mpi_communicator);
     }
 
 
