@@ -495,11 +495,12 @@ namespace softsand
           for (unsigned int d = 0; d < dim + 1; ++d)
             coupling[c][d] = (c == dim && d == dim) ? DoFTools::always :
                                                       DoFTools::none;
-        const BlockDynamicSparsityPattern dsp = make_block_pattern(dof_handler,
-                                             coupling,
-                                             constraints,
-                                             relevant_partitioning,
-                                             moving_solids);
+        const BlockDynamicSparsityPattern dsp =
+          make_block_pattern(dof_handler,
+                             coupling,
+                             constraints,
+                             relevant_partitioning,
+                             moving_solids);
         pressure_mass_matrix.reinit(owned_partitioning, dsp, mpi_communicator);
         pressure_laplace_matrix.reinit(owned_partitioning,
                                        dsp,
@@ -550,10 +551,10 @@ namespace softsand
           }
       system_matrix.reinit(owned_partitioning,
                            make_block_pattern(dof_handler,
-                                             coupling,
-                                             constraints,
-                                             relevant_partitioning,
-                                             moving_solids),
+                                              coupling,
+                                              constraints,
+                                              relevant_partitioning,
+                                              moving_solids),
                            mpi_communicator);
     }
 
