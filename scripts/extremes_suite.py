@@ -36,7 +36,7 @@ RAYLEIGH_TIME = (math.pi * 5e-5 * math.sqrt(2650 / (5e6 / (2 * 1.15))) /
 
 
 def clift_grace_weber(re_number):
-    """Standard drag curve (DESIGN.md section 6); Stokes below 0.01."""
+    """Standard drag curve (Clift, Grace & Weber 1978, Table 5.2); Stokes below 0.01."""
     if re_number <= 0.01:
         return 24 / re_number
     if re_number <= 20:

@@ -24,7 +24,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def clift_grace_weber(re):
-    """Standard drag curve (DESIGN.md section 6)."""
+    """Standard drag curve (Clift, Grace & Weber, Bubbles, Drops and Particles, 1978, Table 5.2)."""
     if re <= 20:
         return 24 / re * (1 + 0.1315 * re ** (0.82 - 0.05 * math.log10(re)))
     return 24 / re * (1 + 0.1935 * re ** 0.6305)

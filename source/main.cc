@@ -1,9 +1,9 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/core/parameters.h>
-#include <softsand/core/simulator.h>
+#include <softsand/drivers/run_parameter_file.h>
 
 #include <chrono>
 #include <iostream>
@@ -54,7 +54,7 @@ main(int argc, char *argv[])
         }
       try
         {
-          softsand::core::run_parameter_file(argv[1], MPI_COMM_WORLD);
+          softsand::drivers::run_parameter_file(argv[1], MPI_COMM_WORLD);
         }
       catch (const std::exception &e)
         {
@@ -69,7 +69,7 @@ main(int argc, char *argv[])
           std::cerr << "softsand: error: "
                     << (rank > 0 ? "(rank " + std::to_string(rank) + ") " :
                                    std::string())
-                    << softsand::core::error_message(e) << std::endl;
+                    << softsand::base::error_message(e) << std::endl;
           // A failure on some ranks only must not leave the others
           // waiting.
           if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
@@ -79,7 +79,7 @@ main(int argc, char *argv[])
     }
   catch (const std::exception &e)
     {
-      std::cerr << "softsand: error: " << softsand::core::error_message(e) << std::endl;
+      std::cerr << "softsand: error: " << softsand::base::error_message(e) << std::endl;
       return 1;
     }
   return 0;

@@ -8,7 +8,8 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
+#include <softsand/drivers/run_parameter_file.h>
 
 #include <fstream>
 
@@ -27,7 +28,7 @@ check(const std::string &what, const std::string &prm_text)
     }
   catch (const std::exception &e)
     {
-      std::string message = softsand::core::error_message(e);
+      std::string message = softsand::base::error_message(e);
       // Paths differ between machines: keep the file name only.
       const std::string source = SOURCE_DIR;
       for (auto k = message.find(source); k != std::string::npos;
@@ -56,7 +57,7 @@ check_granular(const std::string &what, const std::string &prm_text)
   catch (const std::exception &e)
     {
       deallog << "granular, " << what << ": "
-              << softsand::core::error_message(e) << std::endl;
+              << softsand::base::error_message(e) << std::endl;
     }
 }
 
@@ -135,11 +136,11 @@ main(int argc, char **argv)
           "subsection coupling\n set dem substeps = 1\nend\n");
   try
     {
-      softsand::core::run_parameter_file("no_such_file.prm", MPI_COMM_WORLD);
+      softsand::drivers::run_parameter_file("no_such_file.prm", MPI_COMM_WORLD);
     }
   catch (const std::exception &e)
     {
       deallog << "missing parameter file: "
-              << softsand::core::error_message(e) << std::endl;
+              << softsand::base::error_message(e) << std::endl;
     }
 }

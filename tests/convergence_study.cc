@@ -12,15 +12,15 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <softsand/core/convergence_study.h>
-#include <softsand/core/parameter_tools.h>
+#include <softsand/drivers/convergence_study.h>
+#include <softsand/base/parameter_tools.h>
 
 #include <cmath>
 
 #include "test_scenes.h"
 #include "tests.h"
 
-using softsand::core::ConvergenceStudy;
+using softsand::drivers::ConvergenceStudy;
 
 namespace
 {
@@ -89,7 +89,7 @@ namespace
       }
     catch (const std::exception &e)
       {
-        deallog << what << ": " << softsand::core::error_message(e)
+        deallog << what << ": " << softsand::base::error_message(e)
                 << std::endl;
       }
   }

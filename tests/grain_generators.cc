@@ -8,6 +8,7 @@
 #include <softsand/dem/grain_parameters.h>
 #include <softsand/dem/pack_generators.h>
 #include <softsand/io/grain_file.h>
+#include <softsand/io/scene_grains.h>
 
 #include <algorithm>
 #include <fstream>
@@ -271,7 +272,7 @@ main()
       // packs are checked against the domain.
       const BoundingBox<3> file_domain(
         std::make_pair(Point<3>(), Point<3>(1, 1, 3)));
-      const auto grains = dem::create_grains(
+      const auto grains = io::create_scene_grains(
         parameters, source == "file" ? file_domain : cube);
       deallog << "create_grains, source = " << source << ": " << grains.size()
               << " grains, first velocity " << grains[0].velocity

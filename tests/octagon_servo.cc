@@ -18,7 +18,7 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <softsand/core/granular_simulator.h>
+#include <softsand/drivers/granular_scene.h>
 #include <softsand/dem/walls.h>
 
 #include <sstream>
@@ -40,7 +40,7 @@ namespace
     prm.parse_input_from_string(text);
     core::Parameters<3> parameters;
     parameters.parse_parameters(prm);
-    core::GranularSimulator simulator(parameters, MPI_COMM_WORLD);
+    drivers::GranularScene simulator(parameters, MPI_COMM_WORLD);
     simulator.run();
     check(simulator, parameters);
   }
@@ -66,7 +66,7 @@ main(int argc, char **argv)
             " set settled kinetic energy = 1e-24\n set settled checks = 5\n"
             " subsection walls\n  set octagon = 0, 0, 1e-4\n end\nend\n";
     run(text.str(),
-        [&](const core::GranularSimulator &simulator,
+        [&](const drivers::GranularScene &simulator,
             const core::Parameters<3>     &parameters) {
           const auto  &walls = simulator.dynamics().get_walls();
           const auto   grain = simulator.dynamics().gather_grains()[0];
@@ -110,7 +110,7 @@ main(int argc, char **argv)
     std::stringstream text;
     text << scene_text("octagon_compaction");
     run(text.str(),
-        [&](const core::GranularSimulator &simulator,
+        [&](const drivers::GranularScene &simulator,
             const core::Parameters<3> &) {
           const auto          &r     = simulator.results();
           const auto          &walls = simulator.dynamics().get_walls();

@@ -6,8 +6,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <softsand/core/parameters.h>
-#include <softsand/core/granular_simulator.h>
-#include <softsand/core/simulator.h>
+#include <softsand/drivers/granular_scene.h>
+#include <softsand/drivers/run_scene.h>
 
 #include <deal.II/base/logstream.h>
 
@@ -42,9 +42,7 @@ run_scene(const std::string &prm_text, const MPI_Comm comm = MPI_COMM_WORLD)
   prm.parse_input_from_string(prm_text);
   core::Parameters<dim> parameters;
   parameters.parse_parameters(prm);
-  core::Simulator<dim> simulator(parameters, comm);
-  simulator.run();
-  return simulator.results();
+  return drivers::run_scene(parameters, comm);
 }
 
 /// Run a granular (DEM-only) scene given as .prm text; its final results.
@@ -58,7 +56,7 @@ run_granular_scene(const std::string &prm_text,
   prm.parse_input_from_string(prm_text);
   core::Parameters<3> parameters;
   parameters.parse_parameters(prm);
-  core::GranularSimulator simulator(parameters, comm);
+  drivers::GranularScene simulator(parameters, comm);
   simulator.run();
   return simulator.results();
 }

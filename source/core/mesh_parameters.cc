@@ -1,5 +1,5 @@
 #include <softsand/core/mesh_parameters.h>
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -12,11 +12,11 @@ namespace softsand
     MeshParameters<dim>::declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("mesh");
-      declare_double_list(prm,
+      base::declare_double_list(prm,
                           "lower corner",
                           dim == 2 ? "0, 0" : "0, 0, 0",
                           "Lower corner of the box domain (m).");
-      declare_double_list(prm,
+      base::declare_double_list(prm,
                           "upper corner",
                           dim == 2 ? "1e-3, 1e-3" : "1e-3, 1e-3, 1e-3",
                           "Upper corner of the box domain (m).");
@@ -64,11 +64,11 @@ namespace softsand
     MeshParameters<dim>::parse_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("mesh");
-      lower_corner = get_point<dim>(prm, "lower corner");
-      upper_corner = get_point<dim>(prm, "upper corner");
+      lower_corner = base::get_point<dim>(prm, "lower corner");
+      upper_corner = base::get_point<dim>(prm, "upper corner");
       for (unsigned int d = 0; d < dim; ++d)
         if (!(upper_corner[d] > lower_corner[d]))
-          throw_invalid_parameter("mesh/upper corner",
+          base::throw_invalid_parameter("mesh/upper corner",
                                   prm.get("upper corner"),
                                   "each coordinate must exceed the lower "
                                   "corner's (" +
@@ -78,7 +78,7 @@ namespace softsand
            Utilities::split_string_list(prm.get("coarse cells"), ','))
         coarse_cells.push_back(Utilities::string_to_int(s));
       if (!coarse_cells.empty() && coarse_cells.size() != dim)
-        throw_invalid_parameter("mesh/coarse cells",
+        base::throw_invalid_parameter("mesh/coarse cells",
                                 prm.get("coarse cells"),
                                 "give " + std::to_string(dim) +
                                   " numbers or leave it empty");
@@ -87,7 +87,7 @@ namespace softsand
       // A grain narrower than a cell is not resolved: with 0.5 cells per
       // diameter a sphere in a stream took 0.22 of its Stokes drag.
       if (cells_per_diameter > 0 && cells_per_diameter < 1)
-        throw_invalid_parameter("mesh/cells per diameter",
+        base::throw_invalid_parameter("mesh/cells per diameter",
                                 prm.get("cells per diameter"),
                                 "a grain must span at least one cell: give "
                                 "N >= 1 (the paper uses 6-16), or 0 for no "

@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/core/parameters.h>
 
 #include <fstream>
@@ -51,7 +51,7 @@ namespace softsand
       postprocessing.parse_parameters(prm);
       convergence_study.parse_parameters(prm);
       if (postprocessing.flow_axis >= dim)
-        throw_invalid_parameter("postprocessing/flow axis",
+        base::throw_invalid_parameter("postprocessing/flow axis",
                                 "z",
                                 "a 2D scene flows along x or y");
       // Radial cells: rings and fracture maps are centred on the inlet.
@@ -59,7 +59,7 @@ namespace softsand
       fracture_area.parse_parameters(prm);
       const auto &inlet = boundary_conditions.inlet_region();
       if (!radial_flow.radii.empty() && !inlet.enabled())
-        throw_invalid_parameter("postprocessing/radial flow/radii",
+        base::throw_invalid_parameter("postprocessing/radial flow/radii",
                                 prm.get({"postprocessing", "radial flow"}, "radii"),
                                 "pressure rings are centred on the inlet: set "
                                 "boundary conditions/inlet region/type = "
@@ -68,7 +68,7 @@ namespace softsand
         {
           if (dim != 3 || !inlet.enabled() ||
               std::abs(std::abs(inlet.axis[dim - 1]) - 1) > 1e-12)
-            throw_invalid_parameter(
+            base::throw_invalid_parameter(
               "postprocessing/fracture area/enabled",
               "true",
               "the fracture map is a 3D cell between plates normal to z "
@@ -98,7 +98,7 @@ namespace softsand
               if (v == "2" || v == "3")
                 dim = std::stoi(v);
               else
-                throw_invalid_parameter("dimension", v, "2 or 3");
+                base::throw_invalid_parameter("dimension", v, "2 or 3");
             }
         }
       return dim;

@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/core/simulation_control.h>
 
 namespace softsand
@@ -75,7 +75,7 @@ namespace softsand
                                                      Mode::transient)));
       time_step = prm.get_double("time step");
       if (!(time_step > 0))
-        throw_invalid_parameter("simulation control/time step",
+        base::throw_invalid_parameter("simulation control/time step",
                                 prm.get("time step"),
                                 "the time step must be > 0 s");
       end_time               = prm.get_double("end time");
@@ -87,7 +87,7 @@ namespace softsand
       if ((mode == Mode::transient || mode == Mode::granular ||
            mode == Mode::coupled) &&
           !(end_time > 0))
-        throw_invalid_parameter("simulation control/end time",
+        base::throw_invalid_parameter("simulation control/end time",
                                 prm.get("end time"),
                                 "a transient, granular or coupled run needs an end time > 0 s");
       prm.leave_subsection();

@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/coupling/coupling_parameters.h>
 
 namespace softsand
@@ -85,12 +85,12 @@ namespace softsand
                       FluidModel::transient;
       readapt_fraction = prm.get_double("readapt fraction");
       if (!(readapt_fraction > 0) || readapt_fraction > 4)
-        core::throw_invalid_parameter("coupling/readapt fraction",
+        base::throw_invalid_parameter("coupling/readapt fraction",
                                       prm.get("readapt fraction"),
                                       "a fraction of the finest cell in (0, 4]");
       max_displacement_fraction = prm.get_double("max displacement fraction");
       if (!(max_displacement_fraction > 0) || max_displacement_fraction > 4)
-        core::throw_invalid_parameter("coupling/max displacement fraction",
+        base::throw_invalid_parameter("coupling/max displacement fraction",
                                       prm.get("max displacement fraction"),
                                       "a fraction of the finest cell in (0, 4]");
       dem_substeps    = prm.get_integer("dem substeps");

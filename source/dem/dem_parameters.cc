@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/dem/dem_parameters.h>
 
 namespace softsand
@@ -82,27 +82,27 @@ namespace softsand
       max_rayleigh_fraction       = prm.get_double("max rayleigh fraction");
       if (!(automatic_rayleigh_fraction > 0) ||
           automatic_rayleigh_fraction > max_rayleigh_fraction)
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "dem/automatic rayleigh fraction",
           prm.get("automatic rayleigh fraction"),
           "it must lie in (0, max rayleigh fraction = " +
             prm.get("max rayleigh fraction") + "]");
       stability_number = prm.get_double("contact stability number");
       if (!(stability_number > 0))
-        core::throw_invalid_parameter("dem/contact stability number",
+        base::throw_invalid_parameter("dem/contact stability number",
                                       prm.get("contact stability number"),
                                       "it must lie in (0, 2]");
-      gravity       = core::get_tensor<3>(prm, "gravity");
+      gravity       = base::get_tensor<3>(prm, "gravity");
       skin_fraction = prm.get_double("skin");
       if (!(skin_fraction > 0))
-        core::throw_invalid_parameter("dem/skin", prm.get("skin"),
+        base::throw_invalid_parameter("dem/skin", prm.get("skin"),
                                       "it must be > 0");
       settled_kinetic_energy = prm.get_double("settled kinetic energy");
       settled_checks         = prm.get_integer("settled checks");
       statistics_interval    = prm.get_integer("statistics interval");
       output_interval        = prm.get_integer("output interval");
       if (!prm.get("probe box").empty())
-        probe_box = core::get_double_list(prm, "probe box", 6);
+        probe_box = base::get_double_list(prm, "probe box", 6);
       save_pack         = prm.get("save pack");
       save_initial_pack = prm.get("save initial pack");
       prm.leave_subsection();

@@ -4,7 +4,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
 
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/dem/granular_dynamics.h>
 
 #include <algorithm>
@@ -294,7 +294,7 @@ namespace softsand
         }
       else if (t_rayleigh > 0 &&
                dt > parameters.max_rayleigh_fraction * t_rayleigh)
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "dem/time step",
           str(dt),
           "it is " + str(dt / t_rayleigh) +

@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/dem/material.h>
 
 #include <cmath>
@@ -54,7 +54,7 @@ namespace softsand
       cohesion_energy_density = prm.get_double("cohesion energy density");
       const auto positive = [&](const std::string &entry, const double v) {
         if (!(v > 0))
-          core::throw_invalid_parameter("dem/material/" + entry,
+          base::throw_invalid_parameter("dem/material/" + entry,
                                         prm.get(entry),
                                         "it must be > 0");
       };
@@ -62,7 +62,7 @@ namespace softsand
       positive("youngs modulus", youngs_modulus);
       positive("restitution", restitution);
       if (!(poisson_ratio < 0.5))
-        core::throw_invalid_parameter("dem/material/poisson ratio",
+        base::throw_invalid_parameter("dem/material/poisson ratio",
                                       prm.get("poisson ratio"),
                                       "it must lie in [0, 0.5)");
       prm.leave_subsection();

@@ -1,6 +1,6 @@
 #include <deal.II/base/exceptions.h>
 
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/dem/pack_generators.h>
 
 #include <algorithm>
@@ -81,7 +81,7 @@ namespace softsand
       check_positive(const std::string &entry, const double value)
       {
         if (!(value > 0) || !std::isfinite(value))
-          core::throw_invalid_parameter(entry,
+          base::throw_invalid_parameter(entry,
                                         str(value),
                                         "it must be a finite number > 0 m");
       }
@@ -93,7 +93,7 @@ namespace softsand
       {
         check_positive("grains/min diameter", min_diameter);
         if (!(max_diameter > min_diameter) || !std::isfinite(max_diameter))
-          core::throw_invalid_parameter(
+          base::throw_invalid_parameter(
             "grains/max diameter",
             str(max_diameter),
             "the " + kind + " size distribution needs a max diameter above "
@@ -233,7 +233,7 @@ namespace softsand
           {
             const double side = upper[d] - lower[d];
             if (!(side >= diameter * (1. - overlap_tolerance)))
-              core::throw_invalid_parameter(
+              base::throw_invalid_parameter(
                 "grains/diameter",
                 str(diameter),
                 "the grains do not fit in the lattice region " + str(lower) +
@@ -248,7 +248,7 @@ namespace softsand
             n_total *= std::max(n, 1.);
           }
         if (n_total > max_grains)
-          core::throw_invalid_parameter(
+          base::throw_invalid_parameter(
             "grains/lattice spacing",
             str(spacing),
             "the lattice would hold " + str(n_total) + " grains (at most " +
@@ -310,7 +310,7 @@ namespace softsand
                                const std::vector<double> &mass_fractions)
     {
       if (diameters.empty() || diameters.size() != mass_fractions.size())
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "grains/discrete fractions",
           std::to_string(mass_fractions.size()) + " value(s)",
           "give one mass fraction per entry of 'grains/discrete diameters' (" +
@@ -320,14 +320,14 @@ namespace softsand
         {
           check_positive("grains/discrete diameters", diameters[k]);
           if (!(mass_fractions[k] >= 0))
-            core::throw_invalid_parameter("grains/discrete fractions",
+            base::throw_invalid_parameter("grains/discrete fractions",
                                           str(mass_fractions[k]),
                                           "fractions must be >= 0");
           // Number probability of a size: its mass fraction over its mass.
           total += mass_fractions[k] / std::pow(diameters[k], 3);
         }
       if (!(total > 0))
-        core::throw_invalid_parameter("grains/discrete fractions", "all 0",
+        base::throw_invalid_parameter("grains/discrete fractions", "all 0",
                                       "at least one fraction must be > 0");
       SizeDistribution d(Kind::discrete,
                          0,
@@ -369,7 +369,7 @@ namespace softsand
       const double mass = normal_cdf((max_diameter - mean) / sd) -
                           normal_cdf((min_diameter - mean) / sd);
       if (!(mass >= 1e-6))
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "grains/mean diameter",
           str(mean),
           "a normal distribution of this mean and standard deviation " +
@@ -390,13 +390,13 @@ namespace softsand
       check_positive("grains/mean diameter", mean);
       check_positive("grains/diameter standard deviation", sd);
       if (!(min_diameter >= 0) || !std::isfinite(min_diameter))
-        core::throw_invalid_parameter("grains/min diameter",
+        base::throw_invalid_parameter("grains/min diameter",
                                       str(min_diameter),
                                       "it must be a finite number >= 0 m");
       const bool truncated = max_diameter > 0;
       if (truncated && !(max_diameter > min_diameter &&
                          std::isfinite(max_diameter)))
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "grains/max diameter",
           str(max_diameter),
           "the lognormal size distribution needs either 0 (no upper bound) "
@@ -415,7 +415,7 @@ namespace softsand
         (min_diameter > 0 ? normal_cdf((std::log(min_diameter) - mu) / sigma) :
                             0.);
       if (!(mass >= 1e-6))
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "grains/mean diameter",
           str(mean),
           "a lognormal distribution of this mean and standard deviation " +
@@ -485,7 +485,7 @@ namespace softsand
       if (kind == "discrete")
         return SizeDistribution::discrete(p.discrete_diameters,
                                           p.discrete_fractions);
-      core::throw_invalid_parameter(
+      base::throw_invalid_parameter(
         "grains/size distribution",
         kind,
         "allowed are constant, uniform, truncated normal, lognormal and "
@@ -502,7 +502,7 @@ namespace softsand
       check_positive("grains/diameter", diameter);
       check_positive("grains/lattice spacing", spacing);
       if (spacing < diameter * (1. - overlap_tolerance))
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "grains/lattice spacing",
           str(spacing),
           "the simple cubic centre distance must be >= grains/diameter = " +
@@ -528,7 +528,7 @@ namespace softsand
       // apart; corner pairs (one edge apart) are farther for dim <= 3.
       const double min_edge = 2. * diameter / std::sqrt(1. * dim);
       if (cube_edge < min_edge * (1. - overlap_tolerance))
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "grains/lattice spacing",
           str(cube_edge),
           "the bcc cube edge must be >= 2 / sqrt(" + std::to_string(dim) +
@@ -566,7 +566,7 @@ namespace softsand
                 const unsigned int      count)
     {
       if (count == 0 && !(solid_fraction > 0 && solid_fraction < 1))
-        core::throw_invalid_parameter("grains/solid fraction",
+        base::throw_invalid_parameter("grains/solid fraction",
                                       str(solid_fraction),
                                       "it must lie in (0, 1)");
       AssertThrow(max_attempts_per_grain > 0,
@@ -585,7 +585,7 @@ namespace softsand
                   ExcMessage("The random pack region " + str(lower) + " - " +
                              str(upper) + " is empty."));
       if (distribution.min_diameter() > min_side)
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           distribution.kind() == SizeDistribution::Kind::constant ?
             "grains/diameter" :
             "grains/min diameter",
@@ -604,7 +604,7 @@ namespace softsand
         {
           const double d = distribution.draw(rng);
           if (d > min_side)
-            core::throw_invalid_parameter(
+            base::throw_invalid_parameter(
               "grains/max diameter",
               std::isfinite(distribution.max_diameter()) ?
                 str(distribution.max_diameter()) :
@@ -615,7 +615,7 @@ namespace softsand
           diameters.push_back(d);
           drawn += ball_measure<dim>(0.5 * d);
           if (diameters.size() > max_grains)
-            core::throw_invalid_parameter(
+            base::throw_invalid_parameter(
               "grains/solid fraction",
               str(solid_fraction),
               "the random pack would need more than " + str(max_grains) +
@@ -774,5 +774,113 @@ namespace softsand
                  const BoundingBox<3> &,
                  const std::string &,
                  const double);
+
+    namespace
+    {
+      template <int dim>
+      std::vector<Grain<dim>>
+      parse_grain_list(const std::string &text)
+      {
+        std::vector<Grain<dim>> grains;
+        for (const std::string &item :
+             Utilities::split_string_list(text, ';'))
+          {
+            std::vector<double> v;
+            try
+              {
+                for (const auto &x : Utilities::split_string_list(item, ','))
+                  v.push_back(Utilities::string_to_double(x));
+              }
+            catch (...)
+              {
+                v.clear();
+              }
+            if (v.size() != dim + 1)
+              base::throw_invalid_parameter(
+                "grains/list",
+                item,
+                "each grain is 'x, y, " + std::string(dim == 3 ? "z, " : "") +
+                  "radius' with numbers");
+            Grain<dim> g;
+            for (unsigned int d = 0; d < dim; ++d)
+              g.center[d] = v[d];
+            g.radius = v[dim];
+            if (!(g.radius > 0))
+              base::throw_invalid_parameter("grains/list",
+                                            item,
+                                            "the radius must be > 0 m");
+            grains.push_back(g);
+          }
+        return grains;
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    set_initial_velocities(std::vector<Grain<dim>>    &grains,
+                           const GrainParameters<dim> &p)
+    {
+      for (auto &g : grains)
+        {
+          g.velocity         = p.velocity;
+          g.angular_velocity = p.angular_velocity;
+        }
+    }
+
+
+    template <int dim>
+    std::vector<Grain<dim>>
+    create_grains(const GrainParameters<dim> &p,
+                  const BoundingBox<dim>     &domain)
+    {
+      using S = typename GrainParameters<dim>::Source;
+      AssertThrow(p.source != S::file,
+                  ExcMessage("Internal error: pack files (grains/source = "
+                             "file) are read by io::create_scene_grains()."));
+      const BoundingBox<dim> region =
+        p.region_is_domain ?
+          domain :
+          BoundingBox<dim>(std::make_pair(p.region_lower, p.region_upper));
+
+      std::vector<Grain<dim>> grains;
+      switch (p.source)
+        {
+          case S::none:
+          case S::file:
+            break;
+          case S::list:
+            grains = parse_grain_list<dim>(p.list);
+            // Listed packs come from users: refuse overlaps and grains
+            // outside the domain before anything is built on them.
+            check_grains(grains, domain, "grains/list", p.max_overlap_ratio);
+            break;
+          case S::simple_cubic:
+            grains = simple_cubic_array(region, p.diameter, p.lattice_spacing);
+            break;
+          case S::bcc:
+            grains = bcc_array(region, p.diameter, p.lattice_spacing);
+            break;
+          case S::random:
+            grains = random_pack(region,
+                                 make_size_distribution(p),
+                                 p.solid_fraction,
+                                 p.seed,
+                                 100000,
+                                 p.count);
+            break;
+        }
+      set_initial_velocities(grains, p);
+      return grains;
+    }
+
+    template void
+    set_initial_velocities(std::vector<Grain<2>> &, const GrainParameters<2> &);
+    template void
+    set_initial_velocities(std::vector<Grain<3>> &, const GrainParameters<3> &);
+    template std::vector<Grain<2>>
+    create_grains(const GrainParameters<2> &, const BoundingBox<2> &);
+    template std::vector<Grain<3>>
+    create_grains(const GrainParameters<3> &, const BoundingBox<3> &);
   } // namespace dem
 } // namespace softsand

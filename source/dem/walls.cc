@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/dem/walls.h>
 
 #include <algorithm>
@@ -87,7 +87,7 @@ namespace softsand
           const std::string text = prm.get("octagon");
           const auto n_values =
             Utilities::split_string_list(text, ',').size();
-          octagon = core::get_double_list(prm, "octagon",
+          octagon = base::get_double_list(prm, "octagon",
                                           n_values == 10 ? 10 : 3);
         }
       octagon_servo           = prm.get_bool("octagon servo");
@@ -99,12 +99,12 @@ namespace softsand
       const bool any_servo =
         octagon_servo || list.find("servo") != std::string::npos;
       if (any_servo && !(servo_pressure > 0))
-        core::throw_invalid_parameter("dem/walls/servo pressure",
+        base::throw_invalid_parameter("dem/walls/servo pressure",
                                       prm.get("servo pressure"),
                                       "servo walls need a target pressure > 0 "
                                       "Pa");
       if (any_servo && !(servo_max_velocity > 0))
-        core::throw_invalid_parameter("dem/walls/servo max velocity",
+        base::throw_invalid_parameter("dem/walls/servo max velocity",
                                       prm.get("servo max velocity"),
                                       "servo walls need a speed limit > 0 m/s");
       prm.leave_subsection();
@@ -160,7 +160,7 @@ namespace softsand
               faces.insert(faces.end(), face_names.begin(), face_names.end());
             else if (std::find(face_names.begin(), face_names.end(), f) ==
                      face_names.end())
-              core::throw_invalid_parameter("dem/walls/box", p.box_faces,
+              base::throw_invalid_parameter("dem/walls/box", p.box_faces,
                                             "a comma-separated subset of x-, "
                                             "x+, y-, y+, z-, z+, or 'all'");
             else
@@ -187,7 +187,7 @@ namespace softsand
           const double R = p.octagon[2];
           for (unsigned int k = 2; k < p.octagon.size(); ++k)
             if (!(p.octagon[k] > 0))
-              core::throw_invalid_parameter("dem/walls/octagon",
+              base::throw_invalid_parameter("dem/walls/octagon",
                                             std::to_string(p.octagon[k]),
                                             "the inradius must be > 0");
           // Side of a regular octagon of inradius R: 2 R tan(pi/8).
@@ -220,7 +220,7 @@ namespace softsand
           if (!(in >> shape))
             continue;
           const auto bad = [&](const std::string &why) {
-            core::throw_invalid_parameter("dem/walls/list", item, why);
+            base::throw_invalid_parameter("dem/walls/list", item, why);
           };
           double v[7];
           for (unsigned int i = 0; i < (shape == "cylinder" ? 7u : 6u); ++i)

@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/fluid/boundary_conditions.h>
 
 #include <deal.II/base/function_parser.h>
@@ -41,7 +41,7 @@ namespace softsand
             "do-nothing outlet/inlet with the given pressure; moving wall: "
             "the wall moves with the given velocity; symmetry: u.n = 0, no "
             "tangential stress.");
-          core::declare_double_list(prm,
+          base::declare_double_list(prm,
                                     "velocity",
                                     dim == 2 ? "0, 0" : "0, 0, 0",
                                     "velocity / moving wall: velocity (m/s).");
@@ -88,7 +88,7 @@ namespace softsand
                    t == "pressure"    ? Type::pressure :
                    t == "moving wall" ? Type::moving_wall :
                                         Type::symmetry;
-          f.velocity  = core::get_tensor<dim>(prm, "velocity");
+          f.velocity  = base::get_tensor<dim>(prm, "velocity");
           f.flow_rate = prm.get_double("flow rate");
           f.function  = prm.get("function");
           f.pressure  = prm.get_double("pressure");
@@ -99,7 +99,7 @@ namespace softsand
                   FunctionParser<dim> test(dim);
                   test.initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
                                   f.function,
-                                  core::function_constants(),
+                                  base::function_constants(),
                                   true);
                   // muparser compiles lazily: evaluate once to check.
                   Vector<double> value(dim);
@@ -107,7 +107,7 @@ namespace softsand
                 }
               catch (...)
                 {
-                  core::throw_invalid_parameter(
+                  base::throw_invalid_parameter(
                     "boundary conditions/" + face_name(b) + "/function",
                     f.function,
                     std::to_string(dim) +
@@ -126,7 +126,7 @@ namespace softsand
             {
               const unsigned int axis = b / 2;
               if (std::abs(f.velocity[axis]) > 0)
-                core::throw_invalid_parameter(
+                base::throw_invalid_parameter(
                   "boundary conditions/" + face_name(b) + "/velocity",
                   prm.get("velocity"),
                   "a moving wall slides in its own plane: the normal "
@@ -144,7 +144,7 @@ namespace softsand
                                  "boundary conditions/perimeter region");
       if (inlet.enabled() && perimeter.enabled() &&
           !(inlet.radius < perimeter.radius))
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "boundary conditions/inlet region/radius",
           std::to_string(inlet.radius),
           "the inlet must be narrower than the perimeter region's cylinder "
@@ -200,7 +200,7 @@ namespace softsand
                   FunctionParser<dim> u(dim + 1);
                   u.initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
                                f.function + "; 0",
-                               core::function_constants(),
+                               base::function_constants(),
                                true);
                   u.set_time(time);
                   VectorTools::interpolate_boundary_values(

@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/fluid/fluid_parameters.h>
 
 #include <cmath>
@@ -123,11 +123,11 @@ namespace softsand
                       SolidModel::rigid_nodes :
                       SolidModel::penalization;
       if (!(density > 0))
-        core::throw_invalid_parameter("fluid/density",
+        base::throw_invalid_parameter("fluid/density",
                                       prm.get("density"),
                                       "the density must be > 0 kg/m^3");
       if (!(viscosity > 0))
-        core::throw_invalid_parameter("fluid/viscosity",
+        base::throw_invalid_parameter("fluid/viscosity",
                                       prm.get("viscosity"),
                                       "the viscosity must be > 0 Pa s");
       prm.leave_subsection();
@@ -278,7 +278,7 @@ namespace softsand
       grad_div              = prm.get_double("grad div");
       grad_div_cell_factor     = prm.get_double("grad div cell factor");
       if (!(grad_div >= 0) || !std::isfinite(grad_div))
-        core::throw_invalid_parameter("fluid solver/grad div",
+        base::throw_invalid_parameter("fluid solver/grad div",
                                       prm.get("grad div"),
                                       "gamma must be a finite value >= 0 "
                                       "Pa s");

@@ -1,6 +1,6 @@
 #include <softsand/fluid/block_schur_preconditioner.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -102,7 +102,7 @@ namespace softsand
         {
           body_force->initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
                                  expr,
-                                 core::function_constants(),
+                                 base::function_constants(),
                                  true);
           Vector<double> value(dim);
           body_force->vector_value(Point<dim>(), value);

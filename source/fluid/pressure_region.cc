@@ -1,6 +1,6 @@
 #include <deal.II/dofs/dof_tools.h>
 
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/fluid/pressure_region.h>
 
 #include <map>
@@ -29,12 +29,12 @@ namespace softsand
           "fluid sees a pressure condition on the region's surface, made of "
           "the faces of the cells whose centre lies " +
           where + " the cylinder).");
-      core::declare_double_list(prm,
+      base::declare_double_list(prm,
                                 "center",
                                 dim == 2 ? "0, 0" : "0, 0, 0",
                                 "A point on the cylinder's axis (2D: the "
                                 "circle's centre) (m).");
-      core::declare_double_list(prm,
+      base::declare_double_list(prm,
                                 "axis",
                                 dim == 2 ? "0, 0" : "0, 0, 1",
                                 "Direction of the cylinder's axis (3D; "
@@ -61,21 +61,21 @@ namespace softsand
       prm.enter_subsection(name);
       side       = which_side;
       is_enabled = prm.get("type") == "cylinder";
-      center     = core::get_point<dim>(prm, "center");
-      axis       = core::get_tensor<dim>(prm, "axis");
+      center     = base::get_point<dim>(prm, "center");
+      axis       = base::get_tensor<dim>(prm, "axis");
       radius     = prm.get_double("radius");
       pressure   = prm.get_double("pressure");
       if (is_enabled)
         {
           if (!(radius > 0))
-            core::throw_invalid_parameter(path + "/radius",
+            base::throw_invalid_parameter(path + "/radius",
                                           prm.get("radius"),
                                           "a cylinder region needs a radius "
                                           "> 0 m");
           if (dim == 3)
             {
               if (!(axis.norm() > 0))
-                core::throw_invalid_parameter(path + "/axis",
+                base::throw_invalid_parameter(path + "/axis",
                                               prm.get("axis"),
                                               "the axis must be a nonzero "
                                               "vector");

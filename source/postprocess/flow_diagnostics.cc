@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/postprocess/flow_diagnostics.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -64,7 +64,7 @@ namespace softsand
            Utilities::split_string_list(prm.get("pressure drop planes"), ','))
         pressure_planes.push_back(Utilities::string_to_double(s));
       if (pressure_planes.size() == 1)
-        core::throw_invalid_parameter("postprocessing/pressure drop planes",
+        base::throw_invalid_parameter("postprocessing/pressure drop planes",
                                       prm.get("pressure drop planes"),
                                       "give two positions or none");
       reference_velocity = prm.get_double("reference velocity");

@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/postprocess/fracture_area.h>
 
 #include <algorithm>
@@ -63,7 +63,7 @@ namespace softsand
       samples        = prm.get_integer("samples");
       outer_radius   = prm.get_double("outer radius");
       if (enabled && !(open_threshold > 0 && open_threshold < 1))
-        core::throw_invalid_parameter(
+        base::throw_invalid_parameter(
           "postprocessing/fracture area/open threshold",
           prm.get("open threshold"),
           "a solid fraction strictly between 0 and 1");

@@ -2,7 +2,7 @@
 
 #include <deal.II/fe/fe_values.h>
 
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 #include <softsand/postprocess/radial_flow.h>
 
 #include <cmath>
@@ -47,16 +47,16 @@ namespace softsand
            Utilities::split_string_list(prm.get("radii"), ','))
         radii.push_back(Utilities::string_to_double(s));
       if (radii.size() == 1)
-        core::throw_invalid_parameter("postprocessing/radial flow/radii",
+        base::throw_invalid_parameter("postprocessing/radial flow/radii",
                                       prm.get("radii"),
                                       "give at least two radii, or none");
       for (unsigned int k = 1; k < radii.size(); ++k)
         if (!(radii[k] > radii[k - 1]))
-          core::throw_invalid_parameter("postprocessing/radial flow/radii",
+          base::throw_invalid_parameter("postprocessing/radial flow/radii",
                                         prm.get("radii"),
                                         "radii must be > 0 and ascending");
       if (!radii.empty() && !(radii[0] > 0))
-        core::throw_invalid_parameter("postprocessing/radial flow/radii",
+        base::throw_invalid_parameter("postprocessing/radial flow/radii",
                                       prm.get("radii"),
                                       "radii must be > 0 and ascending");
       ring_half_width = prm.get_double("ring half width");

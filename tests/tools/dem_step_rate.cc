@@ -8,7 +8,7 @@
 //     source/dem/granular_dynamics.cc source/dem/contact_law.cc
 //     source/dem/walls.cc source/dem/material.cc source/dem/dem_parameters.cc
 //     source/dem/grain_parameters.cc source/dem/pack_generators.cc
-//     source/io/grain_file.cc source/core/parameter_tools.cc)
+//     source/base/parameter_tools.cc)
 //   (granular_dynamics.cc with -O3, as in the main CMakeLists.txt), then
 //   ./dem_step_rate 15000
 

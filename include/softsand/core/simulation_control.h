@@ -52,6 +52,14 @@ namespace softsand
         return mode == Mode::steady_stokes ||
                mode == Mode::steady_navier_stokes;
       }
+
+      /// Whether a time loop at @p time after @p step steps is done: the
+      /// end time reached (within 1e-12 of it) or the step limit.
+      bool
+      reached_end(const double time, const unsigned long step) const
+      {
+        return time >= end_time * (1 - 1e-12) || step >= max_time_steps;
+      }
     };
   } // namespace core
 } // namespace softsand

@@ -12,7 +12,7 @@ namespace softsand
     /**
      * Subsection "coupling": how the grains of the DEM and the fluid exchange
      * velocity and force in a coupled run (simulation control/mode =
-     * coupled), DESIGN.md section 1.
+     * coupled); doc/architecture.md, "One coupled step".
      */
     struct CouplingParameters
     {

@@ -13,7 +13,7 @@ namespace softsand
   namespace coupling
   {
     /**
-     * How grains are seen by the fluid mesh (DESIGN.md section 3).
+     * How grains are seen by the fluid mesh (doc/architecture.md).
      * quadrature point: the exact solid indicator at each quadrature point;
      * cell average: the paper's cell void fraction, the covered fraction of
      * the cell (sub-sampled), constant over the cell;

@@ -57,13 +57,6 @@ namespace softsand
       void
       parse_parameters(ParameterHandler &prm);
     };
-
-    /// Build the grains of a scene; @p domain is the fluid box (the default
-    /// region of lattices and random packs).
-    template <int dim>
-    std::vector<Grain<dim>>
-    create_grains(const GrainParameters<dim> &parameters,
-                  const BoundingBox<dim>     &domain);
   } // namespace dem
 } // namespace softsand
 

@@ -168,6 +168,24 @@ namespace softsand
                  const BoundingBox<dim>        &domain,
                  const std::string             &where,
                  const double                   max_overlap_ratio = 0);
+
+    /// Give every grain the velocity and angular velocity of the grains
+    /// subsection.
+    template <int dim>
+    void
+    set_initial_velocities(std::vector<Grain<dim>>    &grains,
+                           const GrainParameters<dim> &parameters);
+
+    /**
+     * Build the grains of a generated or listed source (none, list,
+     * lattices, random packs); @p domain is the fluid box (the default
+     * region of lattices and random packs). Pack files are read by
+     * io::create_scene_grains().
+     */
+    template <int dim>
+    std::vector<Grain<dim>>
+    create_grains(const GrainParameters<dim> &parameters,
+                  const BoundingBox<dim>     &domain);
   } // namespace dem
 } // namespace softsand
 

@@ -39,8 +39,9 @@ namespace softsand
 
     /**
      * Incompressible Navier-Stokes with the paper's penalization (Eq. 6) on a
-     * distributed octree mesh, Taylor-Hood Q2-Q1 elements (DESIGN.md section
-     * 2). Where solids cover the fluid (void fraction vf < 1) the density is
+     * distributed octree mesh, Taylor-Hood Q2-Q1 elements
+     * (doc/architecture.md, "Where each equation lives"). Where solids cover
+     * the fluid (void fraction vf < 1) the density is
      * rho* = rho (1 + Theta (1 - vf)) and the momentum predictor relaxes to
      * the solid's rigid velocity u_s:
      *

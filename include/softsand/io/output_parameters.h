@@ -27,6 +27,14 @@ namespace softsand
       };
       Verbosity verbosity = Verbosity::normal;
 
+      /// Whether the fields of time step @p step are written: every output
+      /// interval and at the last step.
+      bool
+      output_due(const unsigned int step, const bool last) const
+      {
+        return last || (output_interval > 0 && step % output_interval == 0);
+      }
+
       static void
       declare_parameters(ParameterHandler &prm);
       void

@@ -5,9 +5,10 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 
-#include <softsand/core/convergence_study.h>
-#include <softsand/core/parameter_tools.h>
-#include <softsand/core/simulator.h>
+#include <softsand/drivers/convergence_study.h>
+#include <softsand/base/parameter_tools.h>
+#include <softsand/drivers/run_scene.h>
+#include <softsand/drivers/scene_setup.h>
 
 #include <malloc.h>
 #include <sys/resource.h>
@@ -23,7 +24,7 @@
 
 namespace softsand
 {
-  namespace core
+  namespace drivers
   {
     namespace
     {
@@ -31,9 +32,9 @@ namespace softsand
 
       /// Size of the knob for the orders: 1/N, 2^-r, 1/Theta, dt.
       double
-      knob_size(const ConvergenceStudyParameters::Knob knob, const double v)
+      knob_size(const core::ConvergenceStudyParameters::Knob knob, const double v)
       {
-        using Knob = ConvergenceStudyParameters::Knob;
+        using Knob = core::ConvergenceStudyParameters::Knob;
         switch (knob)
           {
             case Knob::cells_per_diameter:
@@ -48,9 +49,9 @@ namespace softsand
 
       /// The short column name of the knob in the table.
       std::string
-      knob_column(const ConvergenceStudyParameters::Knob knob)
+      knob_column(const core::ConvergenceStudyParameters::Knob knob)
       {
-        using Knob = ConvergenceStudyParameters::Knob;
+        using Knob = core::ConvergenceStudyParameters::Knob;
         switch (knob)
           {
             case Knob::cells_per_diameter:
@@ -158,164 +159,8 @@ namespace softsand
     }
 
 
-    void
-    ConvergenceStudyParameters::declare_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("convergence study");
-      prm.declare_entry(
-        "knob",
-        "none",
-        Patterns::Selection(
-          "none|cells per diameter|global refinements|theta|time step"),
-        "Run the scene once per value of this knob and write a convergence "
-        "table instead of a single run (none: a single run). cells per "
-        "diameter: mesh/cells per diameter (with mesh/refinement adaptive "
-        "or uniform); global refinements: mesh/global refinements (scenes "
-        "without grains, e.g. manufactured solutions); theta: fluid/theta; "
-        "time step: simulation control/time step.");
-      prm.declare_entry(
-        "values",
-        "",
-        Patterns::List(Patterns::Double()),
-        "Values of the knob, at least two, in any order (the table runs "
-        "from coarse to fine): cells per diameter (dimensionless, 0 < N <= "
-        "256), global refinements (integers 0..12), Theta (dimensionless, "
-        "> 0) or time steps (s, > 0).");
-      prm.declare_entry(
-        "quantity",
-        "drag_coefficient",
-        Patterns::Anything(),
-        "The quantity of interest: a column of the statistics table (its "
-        "last row), e.g. drag_coefficient, stokes_drag_ratio, permeability "
-        "(m^2), pressure_drop (Pa), grain_force_x (N), velocity_l2_error.");
-      prm.declare_entry(
-        "reference value",
-        "",
-        Patterns::Anything(),
-        "Exact value of the quantity, in its units (empty: none). When "
-        "given, the table adds the relative error against it and its "
-        "order in DoFs.");
-      prm.declare_entry(
-        "richardson order",
-        "0",
-        Patterns::Double(0),
-        "Order assumed in the Richardson estimate Q + (Q - Q_coarser) / "
-        "(r^p - 1) (dimensionless; 0: the observed order of the last three "
-        "runs, undefined where the changes alternate in sign).");
-      prm.declare_entry("table name",
-                        "convergence",
-                        Patterns::FileName(),
-                        "Base name of the tables written to the output "
-                        "directory: NAME.txt (text), NAME.md (markdown) and "
-                        "NAME.tex (LaTeX). Each run writes into the "
-                        "subdirectory run-K of the output directory.");
-      prm.leave_subsection();
-    }
-
-
-    void
-    ConvergenceStudyParameters::parse_parameters(ParameterHandler &prm)
-    {
-      prm.enter_subsection("convergence study");
-      const std::string k = prm.get("knob");
-      knob = k == "cells per diameter" ? Knob::cells_per_diameter :
-             k == "global refinements" ? Knob::global_refinements :
-             k == "theta"              ? Knob::theta :
-             k == "time step"          ? Knob::time_step :
-                                         Knob::none;
-      values.clear();
-      const std::string text = prm.get("values");
-      for (const auto &item : Utilities::split_string_list(text, ','))
-        values.push_back(Utilities::string_to_double(item));
-      quantity                    = prm.get("quantity");
-      const std::string reference = prm.get("reference value");
-      has_reference               = !reference.empty();
-      if (has_reference)
-        {
-          try
-            {
-              reference_value = Utilities::string_to_double(reference);
-            }
-          catch (...)
-            {
-              throw_invalid_parameter("convergence study/reference value",
-                                      reference,
-                                      "a number or empty");
-            }
-          if (!std::isfinite(reference_value))
-            throw_invalid_parameter("convergence study/reference value",
-                                    reference,
-                                    "a finite number or empty");
-        }
-      richardson_order = prm.get_double("richardson order");
-      table_name       = prm.get("table name");
-      if (table_name.empty() || table_name.find('/') != std::string::npos)
-        throw_invalid_parameter("convergence study/table name",
-                                table_name,
-                                "a file name without '/'");
-      if (knob != Knob::none)
-        {
-          if (values.size() < 2)
-            throw_invalid_parameter("convergence study/values",
-                                    text,
-                                    "a study of '" + k +
-                                      "' needs at least two values");
-          for (const double v : values)
-            {
-              const std::string allowed =
-                knob == Knob::cells_per_diameter ?
-                  "cells per diameter must lie in (0, 256]" :
-                knob == Knob::global_refinements ?
-                  "global refinements must be integers from 0 to 12" :
-                knob == Knob::theta ? "Theta must be finite and > 0" :
-                                      "time steps must be finite and > 0 s";
-              const bool ok = std::isfinite(v) &&
-                              (knob == Knob::cells_per_diameter ?
-                                 (v > 0 && v <= 256) :
-                               knob == Knob::global_refinements ?
-                                 (v >= 0 && v <= 12 && v == std::round(v)) :
-                                 v > 0);
-              if (!ok)
-                throw_invalid_parameter("convergence study/values",
-                                        text,
-                                        allowed);
-            }
-          std::vector<double> sorted = values;
-          std::sort(sorted.begin(), sorted.end());
-          if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
-            throw_invalid_parameter("convergence study/values",
-                                    text,
-                                    "the values must be distinct");
-          if (quantity.empty())
-            throw_invalid_parameter("convergence study/quantity",
-                                    quantity,
-                                    "a column name of the statistics table");
-        }
-      prm.leave_subsection();
-    }
-
-
-    std::string
-    ConvergenceStudyParameters::knob_name() const
-    {
-      switch (knob)
-        {
-          case Knob::cells_per_diameter:
-            return "cells per diameter";
-          case Knob::global_refinements:
-            return "global refinements";
-          case Knob::theta:
-            return "theta";
-          case Knob::time_step:
-            return "time step";
-          default:
-            return "none";
-        }
-    }
-
-
     template <int dim>
-    ConvergenceStudy<dim>::ConvergenceStudy(const Parameters<dim> &parameters,
+    ConvergenceStudy<dim>::ConvergenceStudy(const core::Parameters<dim> &parameters,
                                             const MPI_Comm         comm)
         : parameters(parameters)
         , mpi_communicator(comm)
@@ -325,116 +170,134 @@ namespace softsand
 
     template <int dim>
     void
-    ConvergenceStudy<dim>::run()
+    ConvergenceStudy<dim>::check_scene() const
     {
-      using Knob     = ConvergenceStudyParameters::Knob;
+      using Knob     = core::ConvergenceStudyParameters::Knob;
       const auto &cs = parameters.convergence_study;
       AssertThrow(cs.knob != Knob::none, ExcInternalError());
       if (parameters.simulation_control.mode ==
-          SimulationControl::Mode::granular)
-        throw_invalid_parameter("convergence study/knob",
-                                cs.knob_name(),
-                                "convergence studies run fluid scenes; "
-                                "simulation control/mode = granular has no "
-                                "fluid (set knob = none)");
+          core::SimulationControl::Mode::granular)
+        base::throw_invalid_parameter("convergence study/knob",
+                                      cs.knob_name(),
+                                      "convergence studies run fluid scenes; "
+                                      "simulation control/mode = granular has "
+                                      "no fluid (set knob = none)");
       if (cs.knob == Knob::cells_per_diameter &&
           parameters.grains.source == dem::GrainParameters<dim>::Source::none)
-        throw_invalid_parameter("convergence study/knob",
-                                cs.knob_name(),
-                                "the scene has no grains to resolve; use "
-                                "global refinements");
+        base::throw_invalid_parameter("convergence study/knob",
+                                      cs.knob_name(),
+                                      "the scene has no grains to resolve; use "
+                                      "global refinements");
+    }
 
+
+    template <int dim>
+    core::Parameters<dim>
+    ConvergenceStudy<dim>::parameters_of_run(const unsigned int k,
+                                             const double       v) const
+    {
+      using Knob                           = core::ConvergenceStudyParameters::Knob;
+      core::Parameters<dim> run_parameters = parameters;
+      switch (parameters.convergence_study.knob)
+        {
+          case Knob::cells_per_diameter:
+            run_parameters.mesh.cells_per_diameter = v;
+            break;
+          case Knob::global_refinements:
+            run_parameters.mesh.global_refinements = static_cast<unsigned int>(v);
+            break;
+          case Knob::theta:
+            run_parameters.fluid.theta = v;
+            break;
+          case Knob::time_step:
+            run_parameters.simulation_control.time_step = v;
+            break;
+          default:
+            break;
+        }
+      run_parameters.output.directory =
+        parameters.output.directory + "/run-" + std::to_string(k);
+      return run_parameters;
+    }
+
+
+    template <int dim>
+    typename ConvergenceStudy<dim>::Run
+    ConvergenceStudy<dim>::measure_run(const core::Parameters<dim> &run_parameters,
+                                       const double                 v)
+    {
+      const auto  &cs        = parameters.convergence_study;
+      const double cpu_start = process_cpu_time();
+      Timer        clock(mpi_communicator, true);
+      std::map<std::string, double> results =
+        run_scene(run_parameters, mpi_communicator);
+      clock.stop();
+      const double wall_time =
+        Utilities::MPI::max(clock.wall_time(), mpi_communicator);
+      // CPU time is what a run costs on a shared machine, where the wall
+      // time also counts the other jobs' share of the cores.
+      const double cpu_time =
+        Utilities::MPI::sum(process_cpu_time() - cpu_start, mpi_communicator);
+
+      Run r;
+      r.value      = v;
+      r.h          = knob_size(cs.knob, v);
+      const auto q = results.find(cs.quantity);
+      if (q == results.end())
+        {
+          std::string names;
+          for (const auto &[name, value] : results)
+            names += (names.empty() ? "" : ", ") + name;
+          base::throw_invalid_parameter("convergence study/quantity",
+                                        cs.quantity,
+                                        "not a statistics column of this "
+                                        "scene; its columns are: " +
+                                          names);
+        }
+      r.quantity        = q->second;
+      r.cells           = static_cast<unsigned int>(results["cells"]);
+      r.dofs            = static_cast<unsigned int>(results["dofs"]);
+      r.wall_time       = wall_time;
+      r.cpu_time        = cpu_time;
+      double iterations = 0;
+      if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        iterations = sum_statistics_column(run_parameters.output.directory +
+                                             "/statistics.txt",
+                                           "total_linear_iterations");
+      r.fgmres_iterations = static_cast<unsigned int>(
+        std::round(Utilities::MPI::broadcast(mpi_communicator, iterations, 0)));
+      Utilities::System::MemoryStats memory;
+      Utilities::System::get_memory_stats(memory);
+      r.peak_memory = Utilities::MPI::sum(memory.VmHWM / 1024., mpi_communicator);
+      return r;
+    }
+
+
+    template <int dim>
+    void
+    ConvergenceStudy<dim>::run()
+    {
+      check_scene();
+      const auto &cs = parameters.convergence_study;
       // Coarse to fine.
       std::vector<double> values = cs.values;
       std::sort(values.begin(), values.end(), [&](double a, double b) {
         return knob_size(cs.knob, a) > knob_size(cs.knob, b);
       });
-
-      if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-        std::filesystem::create_directories(parameters.output.directory);
-      MPI_Barrier(mpi_communicator);
+      make_output_directory(parameters.output.directory, mpi_communicator);
 
       study_runs.clear();
       bool memory_per_run = true;
       for (unsigned int k = 0; k < values.size(); ++k)
         {
-          Parameters<dim> run_parameters = parameters;
-          const double    v              = values[k];
-          switch (cs.knob)
-            {
-              case Knob::cells_per_diameter:
-                run_parameters.mesh.cells_per_diameter = v;
-                break;
-              case Knob::global_refinements:
-                run_parameters.mesh.global_refinements =
-                  static_cast<unsigned int>(v);
-                break;
-              case Knob::theta:
-                run_parameters.fluid.theta = v;
-                break;
-              case Knob::time_step:
-                run_parameters.simulation_control.time_step = v;
-                break;
-              default:
-                break;
-            }
-          run_parameters.output.directory =
-            parameters.output.directory + "/run-" + std::to_string(k);
-
+          const double v = values[k];
           pcout << "Convergence study: run " << k + 1 << " of " << values.size()
                 << ", " << cs.knob_name() << " = " << v << std::endl;
           memory_per_run = Utilities::MPI::min(reset_peak_memory() ? 1 : 0,
                                                mpi_communicator) == 1 &&
                            memory_per_run;
           MPI_Barrier(mpi_communicator);
-          const double                  cpu_start = process_cpu_time();
-          Timer                         clock(mpi_communicator, true);
-          std::map<std::string, double> results;
-          {
-            Simulator<dim> simulator(run_parameters, mpi_communicator);
-            simulator.run();
-            results = simulator.results();
-          }
-          clock.stop();
-          const double wall_time =
-            Utilities::MPI::max(clock.wall_time(), mpi_communicator);
-          // CPU time is what a run costs on a shared machine, where the
-          // wall time also counts the other jobs' share of the cores.
-          const double cpu_time = Utilities::MPI::sum(process_cpu_time() -
-                                                        cpu_start,
-                                                      mpi_communicator);
-
-          Run r;
-          r.value      = v;
-          r.h          = knob_size(cs.knob, v);
-          const auto q = results.find(cs.quantity);
-          if (q == results.end())
-            {
-              std::string names;
-              for (const auto &[name, value] : results)
-                names += (names.empty() ? "" : ", ") + name;
-              throw_invalid_parameter("convergence study/quantity",
-                                      cs.quantity,
-                                      "not a statistics column of this "
-                                      "scene; its columns are: " +
-                                        names);
-            }
-          r.quantity        = q->second;
-          r.cells           = static_cast<unsigned int>(results["cells"]);
-          r.dofs            = static_cast<unsigned int>(results["dofs"]);
-          r.wall_time       = wall_time;
-          r.cpu_time        = cpu_time;
-          double iterations = 0;
-          if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-            iterations = sum_statistics_column(run_parameters.output.directory +
-                                                 "/statistics.txt",
-                                               "total_linear_iterations");
-          r.fgmres_iterations = static_cast<unsigned int>(std::round(
-            Utilities::MPI::broadcast(mpi_communicator, iterations, 0)));
-          Utilities::System::MemoryStats memory;
-          Utilities::System::get_memory_stats(memory);
-          r.peak_memory =
-            Utilities::MPI::sum(memory.VmHWM / 1024., mpi_communicator);
+          const Run r = measure_run(parameters_of_run(k, v), v);
           study_runs.push_back(r);
           // The tables so far: a long study that stops (time limit, memory)
           // keeps its finished runs.
@@ -449,8 +312,8 @@ namespace softsand
                 << std::setprecision(6) << ", " << r.cells << " cells, "
                 << r.dofs << " DoFs, " << r.fgmres_iterations
                 << " FGMRES iterations, " << r.wall_time << " s wall, "
-                << r.cpu_time << " s CPU, "
-                << r.peak_memory << " MB" << std::endl;
+                << r.cpu_time << " s CPU, " << r.peak_memory << " MB"
+                << std::endl;
         }
       if (!memory_per_run)
         pcout << "Convergence study: the peak memory could not be reset "
@@ -533,7 +396,7 @@ namespace softsand
       };
       for (const auto &r : study_runs)
         {
-          if (cs.knob == ConvergenceStudyParameters::Knob::global_refinements)
+          if (cs.knob == core::ConvergenceStudyParameters::Knob::global_refinements)
             convergence_table.add_value(knob,
                                         static_cast<unsigned int>(r.value));
           else
@@ -572,7 +435,7 @@ namespace softsand
           convergence_table.add_value("memory_MB", r.peak_memory);
         }
       convergence_table.set_scientific(
-        knob, cs.knob != ConvergenceStudyParameters::Knob::cells_per_diameter);
+        knob, cs.knob != core::ConvergenceStudyParameters::Knob::cells_per_diameter);
       convergence_table.set_precision(knob, 3);
       convergence_table.set_scientific(q, true);
       convergence_table.set_precision(q, 8);
@@ -670,5 +533,5 @@ namespace softsand
 
     template class ConvergenceStudy<2>;
     template class ConvergenceStudy<3>;
-  } // namespace core
+  } // namespace drivers
 } // namespace softsand

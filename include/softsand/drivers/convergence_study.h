@@ -1,5 +1,5 @@
-#ifndef softsand_core_convergence_study_h
-#define softsand_core_convergence_study_h
+#ifndef softsand_drivers_convergence_study_h
+#define softsand_drivers_convergence_study_h
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/convergence_table.h>
@@ -10,7 +10,7 @@
 
 namespace softsand
 {
-  namespace core
+  namespace drivers
   {
     using namespace dealii;
 
@@ -52,7 +52,7 @@ namespace softsand
         double richardson_error    = 0;
       };
 
-      ConvergenceStudy(const Parameters<dim> &parameters, const MPI_Comm comm);
+      ConvergenceStudy(const core::Parameters<dim> &parameters, const MPI_Comm comm);
 
       void
       run();
@@ -74,6 +74,16 @@ namespace softsand
       }
 
     private:
+      /// Stops for a scene the knob cannot vary.
+      void
+      check_scene() const;
+      /// The scene's parameters with the knob at @p value, into the
+      /// subdirectory run-@p k.
+      core::Parameters<dim>
+      parameters_of_run(const unsigned int k, const double value) const;
+      /// Runs one scene; its quantity, size, iterations, time and memory.
+      Run
+      measure_run(const core::Parameters<dim> &run_parameters, const double value);
       void
       evaluate();
       void
@@ -82,7 +92,7 @@ namespace softsand
       void
       write_tables(const bool final) const;
 
-      const Parameters<dim> &parameters;
+      const core::Parameters<dim> &parameters;
       MPI_Comm               mpi_communicator;
       ConditionalOStream     pcout;
       std::vector<Run>       study_runs;
@@ -100,7 +110,7 @@ namespace softsand
                    const double q_coarse,
                    const double q_medium,
                    const double q_fine);
-  } // namespace core
+  } // namespace drivers
 } // namespace softsand
 
 #endif

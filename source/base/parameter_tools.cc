@@ -1,4 +1,4 @@
-#include <softsand/core/parameter_tools.h>
+#include <softsand/base/parameter_tools.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -6,7 +6,7 @@
 
 namespace softsand
 {
-  namespace core
+  namespace base
   {
     void
     throw_invalid_parameter(const std::string &entry,
@@ -128,5 +128,5 @@ namespace softsand
     get_tensor<2>(const ParameterHandler &, const std::string &);
     template Tensor<1, 3>
     get_tensor<3>(const ParameterHandler &, const std::string &);
-  } // namespace core
+  } // namespace base
 } // namespace softsand

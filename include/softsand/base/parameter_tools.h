@@ -1,5 +1,5 @@
-#ifndef softsand_core_parameter_tools_h
-#define softsand_core_parameter_tools_h
+#ifndef softsand_base_parameter_tools_h
+#define softsand_base_parameter_tools_h
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
@@ -12,7 +12,7 @@
 
 namespace softsand
 {
-  namespace core
+  namespace base
   {
     using namespace dealii;
 
@@ -64,7 +64,7 @@ namespace softsand
                         const std::string &entry,
                         const std::string &default_value,
                         const std::string &documentation);
-  } // namespace core
+  } // namespace base
 } // namespace softsand
 
 #endif

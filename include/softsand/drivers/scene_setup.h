@@ -1,0 +1,102 @@
+#ifndef softsand_drivers_scene_setup_h
+#define softsand_drivers_scene_setup_h
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+
+#include <softsand/core/parameters.h>
+#include <softsand/dem/granular_dynamics.h>
+#include <softsand/fluid/penalized_navier_stokes.h>
+
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace softsand
+{
+  namespace drivers
+  {
+    using namespace dealii;
+
+    /// The screens of a scene: results (rank 0) and progress (rank 0,
+    /// unless output/verbosity = quiet).
+    struct SceneConsole
+    {
+      SceneConsole(const io::OutputParameters &output, const MPI_Comm comm);
+
+      ConditionalOStream pcout;
+      ConditionalOStream progress;
+    };
+
+    /// The scene's box.
+    template <int dim>
+    BoundingBox<dim>
+    scene_box(const core::MeshParameters<dim> &mesh);
+
+    /// Creates the output directory (rank 0); every rank waits for it.
+    void
+    make_output_directory(const std::string &directory, const MPI_Comm comm);
+
+    /**
+     * The coarse box mesh: the cells of mesh/coarse cells, or cubes of the
+     * shortest edge. Where grains are resolved (@p min_diameter > 0), the
+     * subdivision is chosen so that some octree level has cells of exactly
+     * (or just below) d_min / N, else N = 8 and N = 12 would give the same
+     * mesh.
+     */
+    template <int dim>
+    void
+    make_box_mesh(Triangulation<dim>              &triangulation,
+                  const core::MeshParameters<dim> &mesh,
+                  const double                     min_diameter);
+
+    /// The penalized Navier-Stokes solver of a scene on @p triangulation.
+    template <int dim>
+    std::unique_ptr<fluid::PenalizedNavierStokes<dim>>
+    make_fluid_solver(parallel::distributed::Triangulation<dim> &tria,
+                      const core::Parameters<dim> &parameters,
+                      ConditionalOStream          &progress,
+                      TimerOutput                 &timer);
+
+    /// Cell size of the DEM's mesh: one contact range, 2 r_max (1 + skin /
+    /// 2), so that its ghost layer of one cell is the contact halo.
+    double
+    contact_mesh_cell_size(const std::vector<dem::Grain<3>> &grains,
+                           const double                      skin_fraction);
+
+    /// The box where the packing fraction is measured (dem/probe box, or
+    /// the scene's box).
+    BoundingBox<3>
+    probe_box(const dem::DEMParameters &dem, const BoundingBox<3> &box);
+
+    /// Writes the DEM's grains as a pack file (rank 0) to
+    /// @p directory/@p name.
+    void
+    save_pack(const dem::GranularDynamics &dem,
+              const std::string           &directory,
+              const std::string           &name,
+              const MPI_Comm               comm);
+
+    /// The fixed-format results block that tests diff with numdiff, the
+    /// entries of @p results but those @p left_out (timings, counts).
+    void
+    print_results(ConditionalOStream                  &pcout,
+                  const std::string                   &title,
+                  const std::map<std::string, double> &results,
+                  const std::set<std::string>         &left_out);
+
+    /// The results block of a fluid or coupled scene ("Results (3D):"),
+    /// without the wall time and the solver counts, which vary with the
+    /// machine and the solver rather than the physics.
+    void
+    print_fluid_results(ConditionalOStream                  &pcout,
+                        const unsigned int                   dim,
+                        const std::map<std::string, double> &results);
+  } // namespace drivers
+} // namespace softsand
+
+#endif

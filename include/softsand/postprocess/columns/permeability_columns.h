@@ -1,0 +1,42 @@
+#ifndef softsand_postprocess_columns_permeability_columns_h
+#define softsand_postprocess_columns_permeability_columns_h
+
+#include <softsand/postprocess/columns/fluid_column_source.h>
+
+namespace softsand
+{
+  namespace postprocess
+  {
+    /**
+     * Pressure drop along the flow axis (between two planes, fluid-weighted
+     * slab means, or between the inflow and outflow faces), the flow rate
+     * through the inflow face, the superficial velocity q and Darcy's
+     * permeability K = q mu L / dp.
+     */
+    template <int dim>
+    class PermeabilityColumns : public FluidColumnSource<dim>
+    {
+    public:
+      /// @p pressure_planes: none (the box faces) or two positions on the
+      /// axis; @p box_length and @p inflow_area: the box along the axis and
+      /// its inflow face.
+      PermeabilityColumns(const unsigned int         flow_axis,
+                          const double               viscosity,
+                          const std::vector<double> &pressure_planes,
+                          const double               box_length,
+                          const double               inflow_area);
+
+      void
+      add_columns(const FluidSnapshot<dim> &snapshot,
+                  Columns                  &row) const override;
+
+    private:
+      const unsigned int        flow_axis;
+      const double              viscosity;
+      const std::vector<double> pressure_planes;
+      const double              box_length, inflow_area;
+    };
+  } // namespace postprocess
+} // namespace softsand
+
+#endif

@@ -1,0 +1,334 @@
+#include <softsand/coupling/grain_mesh_refinement.h>
+#include <softsand/drivers/coupled_scene.h>
+#include <softsand/io/scene_grains.h>
+
+#include <cmath>
+#include <limits>
+
+namespace softsand
+{
+  namespace drivers
+  {
+    namespace
+    {
+      coupling::HeldForceModel::Settings
+      held_force_settings(const core::Parameters<3> &p)
+      {
+        coupling::HeldForceModel::Settings s;
+        s.viscosity     = p.fluid.viscosity;
+        s.fluid_density = p.fluid.density;
+        s.transient     = p.coupling.fluid_model ==
+                      coupling::CouplingParameters::FluidModel::transient;
+        s.rigid_nodes =
+          p.fluid.solid_model == fluid::FluidParameters::SolidModel::rigid_nodes;
+        s.added_mass_coefficient = p.coupling.added_mass_coefficient;
+        s.buoyancy               = p.coupling.buoyancy;
+        s.gravity                = p.dem.gravity;
+        s.box                    = scene_box(p.mesh);
+        for (unsigned int face = 0; face < 6; ++face)
+          s.face_imposes_velocity[face] =
+            p.boundary_conditions.imposes_velocity(face);
+        return s;
+      }
+    } // namespace
+
+
+    CoupledScene::CoupledScene(const core::Parameters<3> &parameters,
+                               const MPI_Comm             comm)
+      : parameters(parameters)
+      , mpi_communicator(comm)
+      , console(parameters.output, comm)
+      , timer(comm, console.progress, TimerOutput::never, TimerOutput::wall_times)
+      , box(scene_box(parameters.mesh))
+      , fluid(parameters, comm, console.progress, timer)
+      , held_force(std::make_unique<coupling::HeldForceModel>(
+          held_force_settings(parameters)))
+      , grain_columns(probe_box(parameters.dem, box))
+    {}
+
+
+    void
+    CoupledScene::run()
+    {
+      set_up();
+      const auto &sc = parameters.simulation_control;
+      Timer       loop_clock;
+      while (!sc.reached_end(time, step))
+        {
+          ++step;
+          const double dt = choose_time_step();
+          follow_grains();
+          solve_fluid(dt);
+          const bool last  = sc.reached_end(time + dt, step);
+          const bool write = parameters.output.output_due(step, last);
+          record_fluid(time + dt, write);
+          hand_forces_to_grains(dt);
+          advance_grains(dt);
+          time += dt;
+          update_grains_from_dem();
+          record_grains(dt);
+          if (write && grain_output)
+            grain_output->write(dem->particles(), time, mpi_communicator);
+          if (sc.checkpoint_interval > 0 && step % sc.checkpoint_interval == 0)
+            write_checkpoint();
+          report_progress(last, loop_clock);
+        }
+      finish();
+    }
+
+
+    void
+    CoupledScene::set_up()
+    {
+      const auto &p  = parameters;
+      const auto &sc = p.simulation_control;
+      make_output_directory(p.output.directory, mpi_communicator);
+      fluid.weight_cut_cells(p.coupling.cut_cell_weight);
+
+      // The DEM: grains of the scene on a coarse mesh of the same box.
+      {
+        TimerOutput::Scope t(timer, "grains");
+        const std::vector<dem::Grain<3>> initial =
+          io::create_scene_grains(p.grains, box);
+        dem_triangulation =
+          std::make_unique<parallel::distributed::Triangulation<3>>(
+            mpi_communicator);
+        dem::make_contact_mesh(*dem_triangulation,
+                               box,
+                               contact_mesh_cell_size(initial,
+                                                      p.dem.skin_fraction));
+        dem = std::make_unique<dem::GranularDynamics>(*dem_triangulation,
+                                                      p.dem,
+                                                      box);
+        // A restart reads the grains from the checkpoint instead; the
+        // scene's grains still fix the coarse mesh, as in the first run.
+        if (!sc.restart)
+          {
+            dem->insert(initial, true);
+            dem->initialize();
+          }
+        else
+          fluid.set_grains(initial);
+      }
+      if (!sc.restart)
+        update_grains_from_dem();
+      fluid.create_solver(true);
+
+      if (sc.restart)
+        read_checkpoint();
+      else
+        {
+          fluid.make_mesh(true, true);
+          fluid.solver().setup_dofs();
+          fluid.solver().set_time(0);
+          fluid.solver().start_time_stepping();
+        }
+
+      console.progress
+        << "softsand coupled: "
+        << Utilities::MPI::n_mpi_processes(mpi_communicator) << " MPI rank(s), "
+        << fluid.grains().size() << " grain(s), "
+        << fluid.triangulation().n_global_active_cells() << " cells, "
+        << fluid.solver().n_dofs() << " DoFs, fluid "
+        << (p.coupling.fluid_model ==
+                coupling::CouplingParameters::FluidModel::transient ?
+              "transient" :
+              "quasi-steady")
+        << ", DEM step " << dem->time_step() << " s" << std::endl;
+
+      statistics = std::make_unique<io::StatisticsFile>(
+        p.output.directory + "/statistics.txt",
+        mpi_communicator,
+        sc.restart ? long(step) : io::StatisticsFile::new_file);
+      if (p.output.write_vtu)
+        grain_output =
+          std::make_unique<io::GrainOutput>(p.output.directory, "grains");
+
+      finest_cell = coupling::min_cell_edge(fluid.triangulation());
+      // Quasi-steady: the held drag must not outlast the grains' response
+      // time tau = (rho_s + rho_f / 2) d^2 / (18 mu) (explicit coupling of
+      // a linear drag is stable for steps below 2 tau).
+      response_time = std::numeric_limits<double>::max();
+      for (const auto &g : fluid.grains())
+        response_time =
+          std::min(response_time,
+                   (p.dem.material.density + 0.5 * p.fluid.density) *
+                     g.diameter() * g.diameter() / (18 * p.fluid.viscosity));
+    }
+
+
+    double
+    CoupledScene::choose_time_step() const
+    {
+      const auto &sc = parameters.simulation_control;
+      double      dt = sc.time_step;
+      if (parameters.coupling.fluid_model ==
+          coupling::CouplingParameters::FluidModel::quasi_steady)
+        {
+          double max_speed = 0;
+          for (const auto &g : fluid.grains())
+            max_speed = std::max(max_speed, g.velocity.norm());
+          if (max_speed > 0)
+            dt = std::min(dt,
+                          parameters.coupling.max_displacement_fraction *
+                            finest_cell / max_speed);
+          dt = std::min(dt, response_time);
+        }
+      return std::min(dt, sc.end_time - time);
+    }
+
+
+    void
+    CoupledScene::follow_grains()
+    {
+      if (fluid.max_displacement_since_adaptation() >
+          parameters.coupling.readapt_fraction * finest_cell * (1 - 1e-12))
+        {
+          fluid.adapt_to_grains(true);
+          ++n_mesh_adaptations;
+        }
+    }
+
+
+    void
+    CoupledScene::solve_fluid(const double dt)
+    {
+      const auto &sc     = parameters.simulation_control;
+      auto       &solver = fluid.solver();
+      solver.set_time(time + dt);
+      if (parameters.coupling.fluid_model ==
+          coupling::CouplingParameters::FluidModel::quasi_steady)
+        solver.solve_steady_stokes(sc.time_step);
+      else
+        solver.advance(dt, sc.bdf_order);
+    }
+
+
+    void
+    CoupledScene::record_fluid(const double row_time, const bool write_fields)
+    {
+      postprocess::Columns row = fluid.postprocess(step, row_time, write_fields);
+      row["step"]      = step;
+      row["time"]      = row_time;
+      row["wall_time"] = wall_clock.wall_time();
+      for (const auto &[name, value] : row)
+        statistics->add_value(name, value);
+      last_results = row;
+    }
+
+
+    void
+    CoupledScene::hand_forces_to_grains(const double dt)
+    {
+      TimerOutput::Scope t(timer, "coupling: forces to grains");
+      const auto &forces =
+        parameters.coupling.paper_force ? fluid.forces_eq7() : fluid.forces();
+      const coupling::HeldForces held =
+        held_force->compute(fluid.grains(),
+                            grain_ids,
+                            forces,
+                            fluid.solid_field().locator(),
+                            finest_cell,
+                            dt);
+      dem->set_fluid_forces(held.force,
+                            held.torque,
+                            held.resistance,
+                            held.rotational_resistance);
+    }
+
+
+    void
+    CoupledScene::advance_grains(const double dt)
+    {
+      TimerOutput::Scope  t(timer, "dem: sub-steps");
+      const unsigned int  substeps     = parameters.coupling.dem_substeps;
+      const unsigned long steps_before = dem->step_number();
+      if (substeps > 0)
+        {
+          const double h = dt / substeps;
+          AssertThrow(h <= dem->time_step() * (1 + 1e-9),
+                      ExcMessage(
+                        "coupling/dem substeps = " + std::to_string(substeps) +
+                        " gives DEM steps of " + Utilities::to_string(h) +
+                        " s, above the stable DEM step " +
+                        Utilities::to_string(dem->time_step()) +
+                        " s: raise it to at least " +
+                        std::to_string(static_cast<unsigned int>(
+                          std::ceil(dt / dem->time_step()))) +
+                        " or set it to 0 (automatic)."));
+          for (unsigned int k = 0; k < substeps; ++k)
+            dem->step(h);
+        }
+      else
+        dem->advance_to(time + dt);
+      statistics->add_value("dem_substeps", dem->step_number() - steps_before);
+    }
+
+
+    void
+    CoupledScene::update_grains_from_dem()
+    {
+      fluid.set_grains(dem->gather_grains(&grain_ids));
+    }
+
+
+    void
+    CoupledScene::record_grains(const double dt)
+    {
+      statistics->add_value("coupling_time_step", dt);
+      const dem::GranularStatistics s =
+        grain_columns.add_columns(*dem, *statistics, mpi_communicator);
+      // A diverged exchange (fluid forces growing step by step) ends here,
+      // before a row of NaN is written.
+      AssertThrow(std::isfinite(s.kinetic_energy) && std::isfinite(s.max_speed),
+                  ExcMessage(
+                    "The coupled run diverged at t = " +
+                    Utilities::to_string(time) +
+                    " s: the grains' kinetic energy is not finite (the fluid "
+                    "force on the grains grew without bound). Lower "
+                    "'simulation control/time step' or use 'coupling/fluid "
+                    "model = quasi-steady' with 'fluid/solid model = rigid "
+                    "nodes'."));
+      statistics->add_value("mesh_adaptations", n_mesh_adaptations);
+      postprocess::add_first_grain_columns(fluid.grains(), *statistics);
+      statistics->write_row();
+    }
+
+
+    void
+    CoupledScene::report_progress(const bool last, const Timer &loop_clock)
+    {
+      if (step % 10 == 0 || last)
+        console.progress
+          << "   step " << step << ", t = " << time << " s, "
+          << fluid.triangulation().n_global_active_cells() << " cells, "
+          << fluid.solver().get_statistics().linear_iterations
+          << " FGMRES iterations, grain 0 at "
+          << (fluid.grains().empty() ? Point<3>() : fluid.grains()[0].center)
+          << ", " << loop_clock.wall_time() / step << " s per step"
+          << std::endl;
+    }
+
+
+    void
+    CoupledScene::finish()
+    {
+      const auto &p = parameters;
+      if (!p.dem.save_pack.empty())
+        save_pack(*dem, p.output.directory, p.dem.save_pack, mpi_communicator);
+      last_results["coupled_steps"]    = step;
+      last_results["mesh_adaptations"] = n_mesh_adaptations;
+      if (!fluid.grains().empty())
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            last_results["grain0_velocity_" + std::to_string(d)] =
+              fluid.grains()[0].velocity[d];
+            last_results["grain0_center_" + std::to_string(d)] =
+              fluid.grains()[0].center[d];
+          }
+      print_fluid_results(console.pcout, 3, last_results);
+      if (p.output.verbosity != io::OutputParameters::Verbosity::quiet)
+        timer.print_wall_time_statistics(mpi_communicator);
+    }
+  } // namespace drivers
+} // namespace softsand

@@ -1,0 +1,162 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/distributed/grid_refinement.h>
+#include <deal.II/numerics/error_estimator.h>
+
+#include <softsand/drivers/fluid_scene.h>
+#include <softsand/io/scene_grains.h>
+
+namespace softsand
+{
+  namespace drivers
+  {
+    template <int dim>
+    FluidScene<dim>::FluidScene(const core::Parameters<dim> &parameters,
+                                const MPI_Comm               comm)
+      : parameters(parameters)
+      , mpi_communicator(comm)
+      , console(parameters.output, comm)
+      , timer(comm, console.progress, TimerOutput::never, TimerOutput::wall_times)
+      , fluid(parameters, comm, console.progress, timer)
+    {}
+
+
+    template <int dim>
+    void
+    FluidScene<dim>::run()
+    {
+      const auto &p = parameters;
+      make_output_directory(p.output.directory, mpi_communicator);
+      {
+        TimerOutput::Scope t(timer, "grains");
+        fluid.set_grains(
+          io::create_scene_grains(p.grains, scene_box(p.mesh)));
+      }
+      fluid.make_mesh(true, false);
+      console.progress << "softsand: " << dim << "D, "
+                       << Utilities::MPI::n_mpi_processes(mpi_communicator)
+                       << " MPI rank(s), " << fluid.grains().size()
+                       << " grain(s), "
+                       << fluid.triangulation().n_global_active_cells()
+                       << " cells" << std::endl;
+
+      statistics = std::make_unique<io::StatisticsFile>(
+        p.output.directory + "/statistics.txt", mpi_communicator);
+      fluid.create_solver(false);
+
+      if (p.simulation_control.is_steady())
+        solve_steady();
+      else
+        march_in_time();
+
+      print_fluid_results(console.pcout, dim, last_results);
+      if (p.output.verbosity != io::OutputParameters::Verbosity::quiet)
+        timer.print_wall_time_statistics(mpi_communicator);
+    }
+
+
+    template <int dim>
+    void
+    FluidScene<dim>::solve_steady()
+    {
+      const auto &p      = parameters;
+      auto       &solver = fluid.solver();
+      for (unsigned int cycle = 0; cycle <= p.mesh.kelly_cycles; ++cycle)
+        {
+          if (cycle > 0)
+            refine_by_velocity_error();
+          solver.setup_dofs();
+          solver.set_time(0);
+          console.progress << "   solve " << cycle << ": "
+                           << fluid.triangulation().n_global_active_cells()
+                           << " cells, " << solver.n_dofs() << " DoFs"
+                           << std::endl;
+          if (p.simulation_control.mode ==
+              core::SimulationControl::Mode::steady_stokes)
+            solver.solve_steady_stokes(p.simulation_control.time_step);
+          else
+            solver.solve_steady_navier_stokes(p.simulation_control.time_step);
+          record(cycle, 0., true);
+        }
+    }
+
+
+    template <int dim>
+    void
+    FluidScene<dim>::march_in_time()
+    {
+      const auto  &sc     = parameters.simulation_control;
+      auto        &solver = fluid.solver();
+      const double dt     = sc.time_step;
+      solver.setup_dofs();
+      solver.set_time(0);
+      solver.start_time_stepping();
+      double       time = 0;
+      unsigned int step = 0;
+      while (!sc.reached_end(time, step))
+        {
+          ++step;
+          time += dt;
+          solver.set_time(time);
+          solver.advance(dt, sc.bdf_order);
+          const bool steady =
+            sc.steady_state_tolerance > 0 &&
+            solver.relative_velocity_change() < sc.steady_state_tolerance;
+          const bool last = steady || sc.reached_end(time, step);
+          record(step, time, parameters.output.output_due(step, last));
+          if (step % 10 == 0 || last)
+            console.progress << "   step " << step << ", t = " << time
+                             << " s, "
+                             << solver.get_statistics().linear_iterations
+                             << " FGMRES iterations, relative change "
+                             << solver.relative_velocity_change() << std::endl;
+          if (steady)
+            break;
+        }
+    }
+
+
+    template <int dim>
+    void
+    FluidScene<dim>::refine_by_velocity_error()
+    {
+      TimerOutput::Scope t(timer, "mesh");
+      auto              &tria = fluid.triangulation();
+      const auto        &solver = fluid.solver();
+      Vector<float>      indicators(tria.n_active_cells());
+      const FEValuesExtractors::Vector velocities(0);
+      KellyErrorEstimator<dim>::estimate(
+        solver.get_dof_handler(),
+        QGauss<dim - 1>(3),
+        {},
+        solver.get_solution(),
+        indicators,
+        solver.get_fe().component_mask(velocities));
+      parallel::distributed::GridRefinement::refine_and_coarsen_fixed_number(
+        tria, indicators, parameters.mesh.kelly_refine_fraction, 0.);
+      for (const auto &cell : tria.active_cell_iterators())
+        if (cell->level() >= int(parameters.mesh.max_refinement_level))
+          cell->clear_refine_flag();
+      tria.execute_coarsening_and_refinement();
+    }
+
+
+    template <int dim>
+    void
+    FluidScene<dim>::record(const unsigned int step,
+                            const double       time,
+                            const bool         write_fields)
+    {
+      postprocess::Columns row = fluid.postprocess(step, time, write_fields);
+      row["step"]      = step;
+      row["time"]      = time;
+      row["wall_time"] = wall_clock.wall_time();
+      for (const auto &[name, value] : row)
+        statistics->add_value(name, value);
+      statistics->write_row();
+      last_results = row;
+    }
+
+    template class FluidScene<2>;
+    template class FluidScene<3>;
+  } // namespace drivers
+} // namespace softsand

@@ -1,0 +1,251 @@
+#include <softsand/coupling/grain_mesh_refinement.h>
+#include <softsand/drivers/fluid_columns.h>
+#include <softsand/drivers/grain_resolved_fluid.h>
+#include <softsand/drivers/scene_setup.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+
+namespace softsand
+{
+  namespace drivers
+  {
+    template <int dim>
+    GrainResolvedFluid<dim>::GrainResolvedFluid(
+      const core::Parameters<dim> &parameters,
+      const MPI_Comm               comm,
+      ConditionalOStream          &progress,
+      TimerOutput                 &timer)
+      : parameters(parameters)
+      , mpi_communicator(comm)
+      , progress(progress)
+      , timer(timer)
+      , mesh(comm,
+             typename Triangulation<dim>::MeshSmoothing(
+               Triangulation<dim>::limit_level_difference_at_vertices))
+      , solids(std::make_unique<coupling::GrainSolidField<dim>>(
+          grain_list,
+          parameters.void_fraction))
+      , columns(make_fluid_columns(parameters, comm))
+    {}
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::set_grains(std::vector<dem::Grain<dim>> new_grains)
+    {
+      grain_list = std::move(new_grains);
+      solids     = std::make_unique<coupling::GrainSolidField<dim>>(
+        grain_list, parameters.void_fraction);
+      if (navier_stokes)
+        navier_stokes->set_solid_field(grain_list.empty() ? nullptr :
+                                                            solids.get());
+    }
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::weight_cut_cells(const double extra_weight)
+    {
+      mesh.signals.weight.connect(
+        [this, extra_weight](
+          const typename Triangulation<dim>::cell_iterator &cell,
+          const typename Triangulation<dim>::CellStatus) -> unsigned int {
+          int grain = -1;
+          return solids->locator().classify_box(cell->bounding_box(), grain) ==
+                     coupling::GrainLocator<dim>::BoxRelation::cut ?
+                   static_cast<unsigned int>(std::round(1 + extra_weight)) :
+                   1u;
+        });
+    }
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::make_mesh(const bool refine,
+                                       const bool follow_grains)
+    {
+      TimerOutput::Scope t(timer, "mesh");
+      const auto        &m = parameters.mesh;
+      const bool resolve_grains = !grain_list.empty() && m.cells_per_diameter > 0;
+      make_box_mesh(mesh,
+                    m,
+                    resolve_grains ? solids->locator().min_diameter() : 0.);
+      if (!refine)
+        return;
+      mesh.refine_global(m.global_refinements);
+      if (resolve_grains && follow_grains)
+        adapt_to_grains(false);
+      else if (resolve_grains)
+        coupling::refine_around_grains(mesh,
+                                       solids->locator(),
+                                       solids->locator().min_diameter() /
+                                         m.cells_per_diameter,
+                                       m.max_refinement_level,
+                                       m.uniform_refinement);
+    }
+
+
+    template <int dim>
+    unsigned int
+    GrainResolvedFluid<dim>::adapt_to_grains(const bool transfer)
+    {
+      TimerOutput::Scope t(timer, "mesh: follow grains");
+      const auto        &m      = parameters.mesh;
+      unsigned int       sweeps = 0;
+      if (!grain_list.empty() && m.cells_per_diameter > 0)
+        {
+          const double target =
+            solids->locator().min_diameter() / m.cells_per_diameter;
+          const double margin = parameters.coupling.readapt_fraction * target;
+          // One sweep moves cells by one level; grains that moved less than
+          // the margin need one. Bounded in case p4est's smoothing undoes
+          // a flag each time.
+          for (; sweeps < 2 * m.max_refinement_level + 2; ++sweeps)
+            {
+              if (!coupling::flag_cells_around_grains(mesh,
+                                                      solids->locator(),
+                                                      target,
+                                                      margin,
+                                                      m.global_refinements,
+                                                      m.max_refinement_level))
+                break;
+              if (transfer)
+                navier_stokes->prepare_for_coarsening_and_refinement();
+              mesh.execute_coarsening_and_refinement();
+              if (transfer)
+                navier_stokes->transfer_after_coarsening_and_refinement();
+            }
+        }
+      adaptation_centers.resize(grain_list.size());
+      for (unsigned int g = 0; g < grain_list.size(); ++g)
+        adaptation_centers[g] = grain_list[g].center;
+      return sweeps;
+    }
+
+
+    template <int dim>
+    double
+    GrainResolvedFluid<dim>::max_displacement_since_adaptation() const
+    {
+      // Grains that left the domain change the list: adapt anew.
+      if (adaptation_centers.size() != grain_list.size())
+        return std::numeric_limits<double>::max();
+      double largest = 0;
+      for (unsigned int g = 0; g < grain_list.size(); ++g)
+        largest = std::max(largest,
+                           grain_list[g].center.distance(adaptation_centers[g]));
+      return largest;
+    }
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::create_solver(const bool moving_solids)
+    {
+      navier_stokes = make_fluid_solver(mesh, parameters, progress, timer);
+      navier_stokes->set_moving_solids(moving_solids);
+      navier_stokes->set_solid_field(grain_list.empty() ? nullptr :
+                                                          solids.get());
+      if (parameters.output.write_vtu)
+        field_output = std::make_unique<io::FieldOutput<dim>>(
+          parameters.output.directory, "solution");
+    }
+
+
+    template <int dim>
+    postprocess::Columns
+    GrainResolvedFluid<dim>::postprocess(const unsigned int step,
+                                         const double       time,
+                                         const bool         write_files)
+    {
+      TimerOutput::Scope t(timer, "postprocess");
+      reaction_forces = coupling::GrainForces<dim>();
+      eq7_forces      = coupling::GrainForces<dim>();
+      if (!grain_list.empty())
+        {
+          reaction_forces = coupling::compute_grain_forces(
+            *navier_stokes,
+            grain_list,
+            coupling::ForceModel::penalization_reaction,
+            mpi_communicator);
+          eq7_forces = coupling::compute_grain_forces(
+            *navier_stokes,
+            grain_list,
+            coupling::ForceModel::stress_divergence,
+            mpi_communicator);
+        }
+      const postprocess::FluidSnapshot<dim> snapshot{mesh,
+                                                     *navier_stokes,
+                                                     grain_list,
+                                                     *solids,
+                                                     reaction_forces,
+                                                     eq7_forces,
+                                                     step,
+                                                     time,
+                                                     write_files};
+      postprocess::Columns row;
+      for (const auto &source : columns)
+        source->add_columns(snapshot, row);
+      if (write_files)
+        {
+          write_fields(time);
+          if (parameters.postprocessing.write_grain_forces &&
+              !grain_list.empty())
+            write_grain_forces();
+        }
+      return row;
+    }
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::write_fields(const double time) const
+    {
+      if (!field_output)
+        return;
+      Vector<float> void_fraction(mesh.n_active_cells());
+      for (const auto &cell : mesh.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            int g;
+            void_fraction(cell->active_cell_index()) =
+              1. - solids->cell_solid_fraction(*cell, g);
+          }
+      field_output->write(navier_stokes->get_dof_handler(),
+                          navier_stokes->get_solution(),
+                          void_fraction,
+                          time);
+    }
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::write_grain_forces() const
+    {
+      if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+        return;
+      // Written aside and renamed: a reader never sees half a file.
+      const std::string name = parameters.output.directory + "/grain_forces.txt";
+      {
+        std::ofstream out(name + ".tmp");
+        out << "# grain x y" << (dim == 3 ? " z" : "") << " radius fx fy"
+            << (dim == 3 ? " fz" : "") << " tx ty tz eq7_fx eq7_fy"
+            << (dim == 3 ? " eq7_fz" : "") << '\n'
+            << std::setprecision(10);
+        for (unsigned int g = 0; g < grain_list.size(); ++g)
+          out << g << ' ' << grain_list[g].center << ' '
+              << grain_list[g].radius << ' ' << reaction_forces.force[g] << ' '
+              << reaction_forces.torque[g] << ' ' << eq7_forces.force[g]
+              << '\n';
+      }
+      std::rename((name + ".tmp").c_str(), name.c_str());
+    }
+
+    template class GrainResolvedFluid<2>;
+    template class GrainResolvedFluid<3>;
+  } // namespace drivers
+} // namespace softsand

@@ -1,0 +1,222 @@
+#include <softsand/drivers/granular_scene.h>
+#include <softsand/io/grain_file.h>
+#include <softsand/io/scene_grains.h>
+
+#include <cmath>
+#include <iomanip>
+
+namespace softsand
+{
+  namespace drivers
+  {
+    GranularScene::GranularScene(const core::Parameters<3> &parameters,
+                                 const MPI_Comm             comm)
+      : parameters(parameters)
+      , mpi_communicator(comm)
+      , console(parameters.output, comm)
+      , box(scene_box(parameters.mesh))
+      , grain_columns(probe_box(parameters.dem, box))
+      , triangulation(comm)
+    {}
+
+
+    void
+    GranularScene::run()
+    {
+      set_up();
+      record();
+      write_grains();
+      loop_clock.restart();
+      bool last_recorded = true;
+      while (!finished())
+        {
+          dem->step();
+          const unsigned long n = dem->step_number();
+          last_recorded =
+            (n % parameters.dem.statistics_interval == 0) || finished();
+          if (last_recorded)
+            {
+              record();
+              settled = check_settled();
+            }
+          if (parameters.dem.output_interval > 0 &&
+              n % parameters.dem.output_interval == 0)
+            write_grains();
+          report_progress();
+          if (settled)
+            break;
+        }
+      finish(last_recorded);
+    }
+
+
+    void
+    GranularScene::set_up()
+    {
+      const auto &p  = parameters;
+      const auto &dp = p.dem;
+      make_output_directory(p.output.directory, mpi_communicator);
+
+      const std::vector<dem::Grain<3>> grains =
+        io::create_scene_grains(p.grains, box);
+      dem::make_contact_mesh(triangulation,
+                             box,
+                             contact_mesh_cell_size(grains, dp.skin_fraction));
+      dem = std::make_unique<dem::GranularDynamics>(triangulation, dp, box);
+      dem->insert(grains, true);
+      dem->initialize();
+
+      console.progress << "softsand granular: "
+                       << Utilities::MPI::n_mpi_processes(mpi_communicator)
+                       << " MPI rank(s), " << grains.size() << " grain(s), "
+                       << dem->get_walls().size() << " wall(s), dt = "
+                       << dem->time_step() << " s = "
+                       << (dem->rayleigh_time() > 0 ?
+                             dem->time_step() / dem->rayleigh_time() :
+                             0.)
+                       << " Rayleigh time" << std::endl;
+
+      statistics = std::make_unique<io::StatisticsFile>(
+        p.output.directory + "/statistics.txt", mpi_communicator);
+      if (p.output.write_vtu)
+        {
+          grain_output =
+            std::make_unique<io::GrainOutput>(p.output.directory, "grains");
+          if (!dem->get_walls().empty())
+            wall_output =
+              std::make_unique<io::WallOutput>(p.output.directory, "walls", box);
+        }
+      if (!dp.save_initial_pack.empty() &&
+          Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        io::write_grain_file<3>(p.output.directory + "/" + dp.save_initial_pack,
+                                grains);
+    }
+
+
+    bool
+    GranularScene::finished() const
+    {
+      return dem->time() + 0.5 * dem->time_step() >=
+               parameters.simulation_control.end_time ||
+             dem->step_number() >= parameters.simulation_control.max_time_steps;
+    }
+
+
+    void
+    GranularScene::record()
+    {
+      statistics->add_value("time", dem->time());
+      statistics->add_value("step", dem->step_number());
+      last_statistics =
+        grain_columns.add_columns(*dem, *statistics, mpi_communicator);
+      statistics->add_value("wall_time", wall_clock.wall_time());
+      statistics->write_row();
+    }
+
+
+    void
+    GranularScene::write_grains()
+    {
+      if (grain_output)
+        grain_output->write(dem->particles(), dem->time(), mpi_communicator);
+      if (wall_output)
+        wall_output->write(dem->get_walls(), dem->time(), mpi_communicator);
+    }
+
+
+    bool
+    GranularScene::check_settled()
+    {
+      const auto &dp          = parameters.dem;
+      const auto &s           = last_statistics;
+      double      servo_error = 0;
+      for (const auto &wall : dem->get_walls())
+        if (wall.motion == dem::Wall::Motion::servo)
+          servo_error =
+            std::max(servo_error,
+                     std::abs(wall.pressure() / wall.target_pressure - 1));
+      if (dp.settled_kinetic_energy > 0 && s.n_grains > 0 &&
+          s.kinetic_energy / s.n_grains < dp.settled_kinetic_energy &&
+          servo_error < dp.walls.servo_tolerance)
+        {
+          max_servo_error = std::max(max_servo_error, servo_error);
+          return ++settled_rows >= dp.settled_checks;
+        }
+      settled_rows    = 0;
+      max_servo_error = 0;
+      return false;
+    }
+
+
+    void
+    GranularScene::report_progress()
+    {
+      if (wall_clock.wall_time() <= next_report)
+        return;
+      console.progress << "  t = " << dem->time() << " s of "
+                       << parameters.simulation_control.end_time << ", step "
+                       << dem->step_number() << ", dt " << dem->time_step()
+                       << " s, kinetic energy "
+                       << last_statistics.kinetic_energy << " J, "
+                       << std::setprecision(3)
+                       << dem->step_number() * last_statistics.n_grains /
+                            wall_clock.wall_time()
+                       << " grain-steps/s" << std::setprecision(6)
+                       << std::endl;
+      next_report += 10;
+    }
+
+
+    void
+    GranularScene::finish(const bool last_recorded)
+    {
+      const auto &p = parameters;
+      if (!last_recorded)
+        record();
+      write_grains();
+      if (!p.dem.save_pack.empty())
+        save_pack(*dem, p.output.directory, p.dem.save_pack, mpi_communicator);
+
+      const auto  &s         = last_statistics;
+      const double elapsed   = wall_clock.wall_time();
+      const double loop_time = loop_clock.wall_time();
+      const double grain_steps_per_second =
+        dem->step_number() * double(s.n_grains) / loop_time;
+      last_results = {
+        {"time", dem->time()},
+        {"steps", double(dem->step_number())},
+        {"grains", double(s.n_grains)},
+        {"kinetic_energy", s.kinetic_energy},
+        {"mean_speed", s.mean_speed},
+        {"max_overlap_ratio", s.max_overlap},
+        {"mean_overlap_ratio", s.mean_overlap},
+        {"coordination", s.coordination},
+        {"packing_fraction", s.packing_fraction},
+        {"settled", settled ? 1. : 0.},
+        {"settled_servo_max_error", max_servo_error},
+        {"lost_grains",
+         double(Utilities::MPI::sum(dem->n_lost_grains(), mpi_communicator))},
+        {"wall_time", elapsed},
+        {"loop_time", loop_time},
+        {"grain_steps_per_second", grain_steps_per_second}};
+      for (const auto &wall : dem->get_walls())
+        {
+          last_results[wall.name + "_pressure"] = wall.pressure();
+          if (wall.shape == dem::Wall::Shape::plane)
+            last_results[wall.name + "_position"] = wall.point * wall.normal;
+        }
+
+      console.progress << "softsand granular: " << dem->step_number()
+                       << " steps in " << elapsed
+                       << " s: " << grain_steps_per_second
+                       << " grain-steps/s in the time loop, "
+                       << dem->n_neighbor_list_builds()
+                       << " neighbour-list builds"
+                       << (settled ? ", settled" : "") << std::endl;
+      print_results(console.pcout,
+                    "granular",
+                    last_results,
+                    {"wall_time", "loop_time", "grain_steps_per_second"});
+    }
+  } // namespace drivers
+} // namespace softsand

@@ -1,0 +1,59 @@
+#include <softsand/postprocess/columns/fracture_area_columns.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace softsand
+{
+  namespace postprocess
+  {
+    FractureAreaColumns::FractureAreaColumns(
+      const FractureAreaParameters   &parameters,
+      const fluid::PressureRegion<3> &inlet,
+      const Point<3>                 &lower_corner,
+      const Point<3>                 &upper_corner,
+      const std::string              &map_directory,
+      const MPI_Comm                  comm)
+      : parameters(parameters)
+      , inlet(inlet)
+      , lower_corner(lower_corner)
+      , upper_corner(upper_corner)
+      , map_directory(map_directory)
+      , mpi_communicator(comm)
+    {}
+
+
+    void
+    FractureAreaColumns::add_columns(const FluidSnapshot<3> &s,
+                                     Columns                &row) const
+    {
+      // Computed on rank 0 from the grains (every rank holds them).
+      double areas[2] = {0, 0};
+      if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        {
+          const auto          &lo = lower_corner;
+          const auto          &hi = upper_corner;
+          const FractureMap map(s.grains,
+                                Point<2>(lo[0], lo[1]),
+                                Point<2>(hi[0], hi[1]),
+                                lo[2],
+                                hi[2],
+                                Point<2>(inlet.center[0], inlet.center[1]),
+                                inlet.radius,
+                                parameters);
+          areas[0] = map.fracture_area();
+          areas[1] = map.open_area();
+          if (s.write_fields && !map_directory.empty())
+            {
+              std::ostringstream name;
+              name << map_directory << "/fracture_map-" << std::setw(5)
+                   << std::setfill('0') << s.step << ".pgm";
+              map.write_pgm(name.str());
+            }
+        }
+      MPI_Bcast(areas, 2, MPI_DOUBLE, 0, mpi_communicator);
+      row["fracture_area"] = areas[0];
+      row["open_area"]     = areas[1];
+    }
+  } // namespace postprocess
+} // namespace softsand
