@@ -135,7 +135,7 @@ def cases():
                       [('fluid/theta', theta),
                        ('fluid/solid model', 'penalization'),
                        ('coupling/fluid model', 'transient')],
-                      check=band('grain0_velocity_2', -2e-3, -1e-6, '%.3g')))
+                      check=band('grain0_vz', -2e-3, -1e-6, '%.3g')))
     # 2 .. 32 cells per diameter (rigid nodes).
     for n in ('2', '4', '8', '16', '32'):
         c.append(Case('cells_per_diameter_%s' % n, 'sphere',
@@ -227,7 +227,7 @@ def cases():
                   check=restitution))
     c.append(Case('single_grain_coupled', 'coupled_sphere',
                   'one grain settling (coupled)',
-                  check=band('grain0_velocity_2', -2e-3, -1e-6, '%.3g')))
+                  check=band('grain0_vz', -2e-3, -1e-6, '%.3g')))
     # Rank boundaries (2 ranks).
     c.append(Case('rank_boundary_fluid', 'sphere',
                   'sphere on the boundary of 2 ranks', ranks=2,
@@ -238,7 +238,7 @@ def cases():
                                band('lost_grains', 0, 0, '%g'))))
     c.append(Case('rank_boundary_coupled', 'coupled_sphere',
                   'settling grain on the boundary of 2 ranks', ranks=2,
-                  check=band('grain0_velocity_2', -2e-3, -1e-6, '%.3g')))
+                  check=band('grain0_vz', -2e-3, -1e-6, '%.3g')))
     # Grains leaving the domain.
     c.append(Case('grain_leaves_dem', 'granular_cross',
                   'grain leaves through x max', [('simulation control/end '

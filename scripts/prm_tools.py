@@ -6,6 +6,20 @@ import subprocess
 import time
 
 
+
+# Open MPI refuses root and more ranks than cores unless told (CI runs as
+# root on 2 cores): every script that imports this module starts mpirun
+# with the environment of scripts/mpi_env.sh, from any shell.
+MPI_ENVIRONMENT = {
+    'OMPI_ALLOW_RUN_AS_ROOT': '1',
+    'OMPI_ALLOW_RUN_AS_ROOT_CONFIRM': '1',
+    'OMPI_MCA_rmaps_base_oversubscribe': '1',
+    'OMP_NUM_THREADS': '1',
+    'DEAL_II_NUM_THREADS': '1',
+}
+for _name, _value in MPI_ENVIRONMENT.items():
+    os.environ.setdefault(_name, _value)
+
 def set_entry(text, path, value):
     """Set 'subsection a/subsection b/set key' in a .prm text; append the
     subsection block at the end if the entry is not there (ParameterHandler

@@ -27,7 +27,7 @@ main(int argc, char **argv)
   const double weight = (rho_s - rho_f) * M_PI * d * d * d / 6 * g;
   const double v_stokes = (rho_s - rho_f) * g * d * d / (18 * mu);
   const double v_wall   = (1 - 1.903 * 0.1) * v_stokes;
-  const double v        = -r.at("grain0_velocity_2");
+  const double v        = -r.at("grain0_vz");
   deallog << "fluid force balances weight - buoyancy within 1 %: "
           << (std::abs(r.at("grain_force_z") / weight - 1) < 1e-2 ? "yes" :
                                                                   "no")

@@ -36,6 +36,14 @@ namespace softsand
         "Cells across the smallest grain diameter on grain surfaces "
         "(the paper uses 6-16; 0 = no refinement around grains; values "
         "between 0 and 1 are refused).");
+      prm.declare_entry(
+        "allow unresolved grains",
+        "false",
+        Patterns::Bool(),
+        "Run a fluid or coupled scene whose finest cells are too coarse for "
+        "its grains (fewer than 2 cells across the smallest grain): its "
+        "grains are then seen as a blur of solid fraction, not resolved. "
+        "false stops such a scene with a message.");
       prm.declare_entry("refinement",
                         "adaptive",
                         Patterns::Selection("adaptive|uniform"),
@@ -92,6 +100,7 @@ namespace softsand
                                 "a grain must span at least one cell: give "
                                 "N >= 1 (the paper uses 6-16), or 0 for no "
                                 "refinement around grains");
+      allow_unresolved_grains = prm.get_bool("allow unresolved grains");
       uniform_refinement    = (prm.get("refinement") == "uniform");
       max_refinement_level  = prm.get_integer("max refinement level");
       kelly_cycles          = prm.get_integer("kelly cycles");

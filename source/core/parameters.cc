@@ -2,6 +2,7 @@
 #include <softsand/core/parameters.h>
 
 #include <fstream>
+#include <map>
 #include <regex>
 
 namespace softsand
@@ -102,6 +103,46 @@ namespace softsand
             }
         }
       return dim;
+    }
+
+    std::vector<std::string>
+    duplicated_entries(const std::string &filename)
+    {
+      std::ifstream in(filename);
+      const std::regex subsection(R"(^\s*subsection\s+(.*?)\s*(#.*)?$)");
+      const std::regex end(R"(^\s*end\s*(#.*)?$)");
+      const std::regex set(R"(^\s*set\s+(.*?)\s*=.*$)");
+      std::vector<std::string>                     path;
+      std::map<std::string, unsigned int>          first_line;
+      std::vector<std::string>                     duplicates;
+      std::string                                  line;
+      for (unsigned int number = 1; std::getline(in, line); ++number)
+        {
+          std::smatch m;
+          if (std::regex_match(line, m, subsection))
+            path.push_back(m[1]);
+          else if (std::regex_match(line, end))
+            {
+              if (!path.empty())
+                path.pop_back();
+            }
+          else if (std::regex_match(line, m, set))
+            {
+              std::string entry;
+              for (const auto &s : path)
+                entry += s + "/";
+              entry += std::regex_replace(std::string(m[1]),
+                                          std::regex(R"(\s+)"),
+                                          " ");
+              const auto [it, inserted] = first_line.emplace(entry, number);
+              if (!inserted)
+                duplicates.push_back(
+                  "the entry <" + entry + "> is set twice in <" + filename +
+                  ">, on lines " + std::to_string(it->second) + " and " +
+                  std::to_string(number) + ": the last value is used");
+            }
+        }
+      return duplicates;
     }
 
     template struct Parameters<2>;

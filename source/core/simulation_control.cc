@@ -90,6 +90,20 @@ namespace softsand
         base::throw_invalid_parameter("simulation control/end time",
                                 prm.get("end time"),
                                 "a transient, granular or coupled run needs an end time > 0 s");
+      // Only the coupled scene checkpoints so far: a setting the run would
+      // ignore stops it instead.
+      if (mode != Mode::coupled && restart)
+        base::throw_invalid_parameter(
+          "simulation control/restart",
+          "true",
+          "only coupled scenes (mode = coupled) restart from a checkpoint; "
+          "this " + prm.get("mode") + " scene has none (set restart = false)");
+      if (mode != Mode::coupled && checkpoint_interval > 0)
+        base::throw_invalid_parameter(
+          "simulation control/checkpoint interval",
+          prm.get("checkpoint interval"),
+          "only coupled scenes (mode = coupled) write checkpoints; set it to "
+          "0 for this " + prm.get("mode") + " scene");
       prm.leave_subsection();
     }
   } // namespace core

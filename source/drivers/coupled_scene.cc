@@ -1,9 +1,12 @@
+#include <softsand/base/warnings.h>
 #include <softsand/coupling/grain_mesh_refinement.h>
 #include <softsand/drivers/coupled_scene.h>
 #include <softsand/io/scene_grains.h>
 
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace softsand
 {
@@ -37,7 +40,7 @@ namespace softsand
                                const MPI_Comm             comm)
       : parameters(parameters)
       , mpi_communicator(comm)
-      , console(parameters.output, comm)
+      , console(parameters.output, comm, parameters.simulation_control.restart)
       , timer(comm, console.progress, TimerOutput::never, TimerOutput::wall_times)
       , box(scene_box(parameters.mesh))
       , fluid(parameters, comm, console.progress, timer)
@@ -143,6 +146,17 @@ namespace softsand
       if (p.output.write_vtu)
         grain_output =
           std::make_unique<io::GrainOutput>(p.output.directory, "grains");
+      if (sc.restart)
+        {
+          // Output numbering and series continue: nothing of the first run
+          // is overwritten.
+          fluid.resume_field_output(time);
+          if (grain_output)
+            grain_output->resume(time);
+          console.pcout << "softsand coupled: resumed at step " << step
+                        << ", t = " << time << " s, from the checkpoint in "
+                        << p.output.directory << std::endl;
+        }
 
       finest_cell = coupling::min_cell_edge(fluid.triangulation());
       // Quasi-steady: the held drag must not outlast the grains' response
@@ -154,6 +168,31 @@ namespace softsand
           std::min(response_time,
                    (p.dem.material.density + 0.5 * p.fluid.density) *
                      g.diameter() * g.diameter() / (18 * p.fluid.viscosity));
+      warn_about_fluid_model(p, !fluid.grains().empty(), mpi_communicator);
+      warn_about_response_time();
+    }
+
+
+    void
+    CoupledScene::warn_about_response_time() const
+    {
+      const double dt = parameters.simulation_control.time_step;
+      if (fluid.grains().empty() || !(dt > response_time))
+        return;
+      std::ostringstream text;
+      text << std::setprecision(3) << "simulation control/time step = " << dt
+           << " s is " << dt / response_time
+           << " times the response time (rho_s + rho_f / 2) d^2 / (18 mu) = "
+           << response_time << " s of the smallest grain";
+      if (parameters.coupling.fluid_model ==
+          coupling::CouplingParameters::FluidModel::quasi_steady)
+        text << ": the quasi-steady coupling steps are limited to it.";
+      else
+        text << ": the fluid force held over a step lags the grains, and "
+                "free grains overshoot their terminal velocity (a free "
+                "sphere at 5.7 response times ended at 1.5 times the stream "
+                "velocity). Lower the time step below the response time.";
+      base::warn(text.str(), mpi_communicator);
     }
 
 
@@ -208,11 +247,7 @@ namespace softsand
     CoupledScene::record_fluid(const double row_time, const bool write_fields)
     {
       postprocess::Columns row = fluid.postprocess(step, row_time, write_fields);
-      row["step"]      = step;
-      row["time"]      = row_time;
-      row["wall_time"] = wall_clock.wall_time();
-      for (const auto &[name, value] : row)
-        statistics->add_value(name, value);
+      add_fluid_row(row, step, row_time, wall_clock.wall_time(), *statistics);
       last_results = row;
     }
 
@@ -298,15 +333,19 @@ namespace softsand
     void
     CoupledScene::report_progress(const bool last, const Timer &loop_clock)
     {
-      if (step % 10 == 0 || last)
-        console.progress
-          << "   step " << step << ", t = " << time << " s, "
-          << fluid.triangulation().n_global_active_cells() << " cells, "
-          << fluid.solver().get_statistics().linear_iterations
-          << " FGMRES iterations, grain 0 at "
-          << (fluid.grains().empty() ? Point<3>() : fluid.grains()[0].center)
-          << ", " << loop_clock.wall_time() / step << " s per step"
-          << std::endl;
+      // A line per step, but at most one every 5 s on quick steps.
+      const double now = loop_clock.wall_time();
+      if (!last && now < last_report + 5)
+        return;
+      last_report = now;
+      console.progress
+        << "   step " << step << ", t = " << time << " s ("
+        << progress_of(time, parameters.simulation_control.end_time, now)
+        << "), " << fluid.triangulation().n_global_active_cells()
+        << " cells, " << fluid.solver().get_statistics().linear_iterations
+        << " FGMRES iterations, grain 0 at "
+        << (fluid.grains().empty() ? Point<3>() : fluid.grains()[0].center)
+        << ", " << now / step << " s per step" << std::endl;
     }
 
 
@@ -318,13 +357,13 @@ namespace softsand
         save_pack(*dem, p.output.directory, p.dem.save_pack, mpi_communicator);
       last_results["coupled_steps"]    = step;
       last_results["mesh_adaptations"] = n_mesh_adaptations;
+      // The first grain's state under the names of its statistics columns.
       if (!fluid.grains().empty())
         for (unsigned int d = 0; d < 3; ++d)
           {
-            last_results["grain0_velocity_" + std::to_string(d)] =
-              fluid.grains()[0].velocity[d];
-            last_results["grain0_center_" + std::to_string(d)] =
-              fluid.grains()[0].center[d];
+            const std::string axis(1, "xyz"[d]);
+            last_results["grain0_v" + axis] = fluid.grains()[0].velocity[d];
+            last_results["grain0_" + axis]  = fluid.grains()[0].center[d];
           }
       print_fluid_results(console.pcout, 3, last_results);
       if (p.output.verbosity != io::OutputParameters::Verbosity::quiet)

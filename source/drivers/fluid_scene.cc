@@ -31,6 +31,7 @@ namespace softsand
         fluid.set_grains(
           io::create_scene_grains(p.grains, scene_box(p.mesh)));
       }
+      warn_about_fluid_model(p, !fluid.grains().empty(), mpi_communicator);
       fluid.make_mesh(true, false);
       console.progress << "softsand: " << dim << "D, "
                        << Utilities::MPI::n_mpi_processes(mpi_communicator)
@@ -92,6 +93,8 @@ namespace softsand
       solver.start_time_stepping();
       double       time = 0;
       unsigned int step = 0;
+      Timer        loop_clock;
+      double       last_report = -1e300;
       while (!sc.reached_end(time, step))
         {
           ++step;
@@ -103,12 +106,17 @@ namespace softsand
             solver.relative_velocity_change() < sc.steady_state_tolerance;
           const bool last = steady || sc.reached_end(time, step);
           record(step, time, parameters.output.output_due(step, last));
-          if (step % 10 == 0 || last)
-            console.progress << "   step " << step << ", t = " << time
-                             << " s, "
-                             << solver.get_statistics().linear_iterations
-                             << " FGMRES iterations, relative change "
-                             << solver.relative_velocity_change() << std::endl;
+          // A line per step, but at most one every 5 s on quick steps.
+          if (last || loop_clock.wall_time() >= last_report + 5)
+            {
+              last_report = loop_clock.wall_time();
+              console.progress
+                << "   step " << step << ", t = " << time << " s ("
+                << progress_of(time, sc.end_time, last_report) << "), "
+                << solver.get_statistics().linear_iterations
+                << " FGMRES iterations, relative change "
+                << solver.relative_velocity_change() << std::endl;
+            }
           if (steady)
             break;
         }
@@ -147,11 +155,7 @@ namespace softsand
                             const bool         write_fields)
     {
       postprocess::Columns row = fluid.postprocess(step, time, write_fields);
-      row["step"]      = step;
-      row["time"]      = time;
-      row["wall_time"] = wall_clock.wall_time();
-      for (const auto &[name, value] : row)
-        statistics->add_value(name, value);
+      add_fluid_row(row, step, time, wall_clock.wall_time(), *statistics);
       statistics->write_row();
       last_results = row;
     }

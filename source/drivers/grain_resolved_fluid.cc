@@ -1,3 +1,4 @@
+#include <softsand/base/parameter_tools.h>
 #include <softsand/coupling/grain_mesh_refinement.h>
 #include <softsand/drivers/fluid_columns.h>
 #include <softsand/drivers/grain_resolved_fluid.h>
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace softsand
 {
@@ -68,24 +70,59 @@ namespace softsand
     GrainResolvedFluid<dim>::make_mesh(const bool refine,
                                        const bool follow_grains)
     {
-      TimerOutput::Scope t(timer, "mesh");
-      const auto        &m = parameters.mesh;
-      const bool resolve_grains = !grain_list.empty() && m.cells_per_diameter > 0;
-      make_box_mesh(mesh,
-                    m,
-                    resolve_grains ? solids->locator().min_diameter() : 0.);
-      if (!refine)
+      {
+        TimerOutput::Scope t(timer, "mesh");
+        const auto        &m = parameters.mesh;
+        const bool         resolve_grains =
+          !grain_list.empty() && m.cells_per_diameter > 0;
+        make_box_mesh(mesh,
+                      m,
+                      resolve_grains ? solids->locator().min_diameter() : 0.);
+        if (!refine)
+          return;
+        mesh.refine_global(m.global_refinements);
+        if (resolve_grains && follow_grains)
+          adapt_to_grains(false);
+        else if (resolve_grains)
+          coupling::refine_around_grains(mesh,
+                                         solids->locator(),
+                                         solids->locator().min_diameter() /
+                                           m.cells_per_diameter,
+                                         m.max_refinement_level,
+                                         m.uniform_refinement);
+      }
+      // Outside the timed section: a stop here is reported cleanly.
+      check_resolution();
+    }
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::check_resolution() const
+    {
+      if (grain_list.empty() || parameters.mesh.allow_unresolved_grains)
         return;
-      mesh.refine_global(m.global_refinements);
-      if (resolve_grains && follow_grains)
-        adapt_to_grains(false);
-      else if (resolve_grains)
-        coupling::refine_around_grains(mesh,
-                                       solids->locator(),
-                                       solids->locator().min_diameter() /
-                                         m.cells_per_diameter,
-                                       m.max_refinement_level,
-                                       m.uniform_refinement);
+      // A grain across fewer than two cells is no solid body on the mesh:
+      // a 1 mm sphere in one 10 mm cell gave a drag coefficient of 1.6e18.
+      const double finest    = coupling::min_cell_edge(mesh);
+      const double d_min     = solids->locator().min_diameter();
+      const double per_grain = d_min / finest;
+      const auto three_digits = [](const double x) {
+        std::ostringstream s;
+        s << std::setprecision(3) << x;
+        return s.str();
+      };
+      if (per_grain < 2)
+        base::throw_invalid_parameter(
+          "mesh/cells per diameter",
+          three_digits(parameters.mesh.cells_per_diameter),
+          "the finest cells are " + three_digits(finest) +
+            " m wide and the smallest grain " + three_digits(d_min) +
+            " m across: " + three_digits(per_grain) +
+            " cells, fewer than 2, so the grains are not resolved. Refine "
+            "(mesh/cells per diameter >= 2, or with 0 more mesh/global "
+            "refinements or coarse cells), or set mesh/allow unresolved "
+            "grains = true to run the grains as a blur of solid fraction");
     }
 
 

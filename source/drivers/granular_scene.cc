@@ -1,9 +1,11 @@
+#include <softsand/base/warnings.h>
 #include <softsand/drivers/granular_scene.h>
 #include <softsand/io/grain_file.h>
 #include <softsand/io/scene_grains.h>
 
 #include <cmath>
 #include <iomanip>
+#include <sstream>
 
 namespace softsand
 {
@@ -153,9 +155,12 @@ namespace softsand
     {
       if (wall_clock.wall_time() <= next_report)
         return;
-      console.progress << "  t = " << dem->time() << " s of "
-                       << parameters.simulation_control.end_time << ", step "
-                       << dem->step_number() << ", dt " << dem->time_step()
+      console.progress << "  t = " << dem->time() << " s ("
+                       << progress_of(dem->time(),
+                                      parameters.simulation_control.end_time,
+                                      loop_clock.wall_time())
+                       << "), step " << dem->step_number() << ", dt "
+                       << dem->time_step()
                        << " s, kinetic energy "
                        << last_statistics.kinetic_energy << " J, "
                        << std::setprecision(3)
@@ -167,6 +172,31 @@ namespace softsand
     }
 
 
+    std::string
+    GranularScene::unsettled_note() const
+    {
+      const auto        &dp = parameters.dem;
+      const auto        &s  = last_statistics;
+      std::ostringstream note;
+      note << std::setprecision(3) << "unsettled: saved at t = " << dem->time()
+           << " s with kinetic energy " << s.kinetic_energy / std::max(1u, s.n_grains)
+           << " J per grain and a fastest grain at " << s.max_speed << " m/s";
+      if (dp.settled_kinetic_energy > 0)
+        {
+          note << ", above dem/settled kinetic energy = "
+               << dp.settled_kinetic_energy << " J";
+          base::warn("dem/save pack = " + dp.save_pack + ": the pack is " +
+                       note.str() +
+                       " (the run reached its end before settling; raise "
+                       "simulation control/end time). Its file says so.",
+                     mpi_communicator);
+        }
+      else
+        note << " (settling not checked: dem/settled kinetic energy = 0)";
+      return note.str();
+    }
+
+
     void
     GranularScene::finish(const bool last_recorded)
     {
@@ -175,7 +205,11 @@ namespace softsand
         record();
       write_grains();
       if (!p.dem.save_pack.empty())
-        save_pack(*dem, p.output.directory, p.dem.save_pack, mpi_communicator);
+        save_pack(*dem,
+                  p.output.directory,
+                  p.dem.save_pack,
+                  mpi_communicator,
+                  settled ? std::string() : unsettled_note());
 
       const auto  &s         = last_statistics;
       const double elapsed   = wall_clock.wall_time();

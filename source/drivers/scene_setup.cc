@@ -1,5 +1,7 @@
 #include <deal.II/grid/grid_generator.h>
 
+#include <softsand/base/parameter_tools.h>
+#include <softsand/base/warnings.h>
 #include <softsand/drivers/scene_setup.h>
 #include <softsand/io/grain_file.h>
 
@@ -8,18 +10,54 @@
 #include <filesystem>
 #include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace softsand
 {
   namespace drivers
   {
+    namespace
+    {
+      /// Rank 0's log of the scene (the directory made first).
+      std::ofstream
+      open_log(const std::string &directory,
+               const MPI_Comm     comm,
+               const bool         append)
+      {
+        std::ofstream log;
+        if (Utilities::MPI::this_mpi_process(comm) != 0)
+          return log;
+        std::error_code error;
+        std::filesystem::create_directories(directory, error);
+        log.open(directory + "/log.txt",
+                 append ? std::ios::app : std::ios::trunc);
+        return log;
+      }
+    } // namespace
+
+
     SceneConsole::SceneConsole(const io::OutputParameters &output,
-                               const MPI_Comm              comm)
-      : pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
-      , progress(std::cout,
+                               const MPI_Comm              comm,
+                               const bool                  append)
+      : log_file(open_log(output.directory, comm, append))
+      , tee_buffer(std::cout.rdbuf(),
+                   log_file.is_open() ? log_file.rdbuf() : nullptr)
+      , tee(&tee_buffer)
+      , pcout(tee, Utilities::MPI::this_mpi_process(comm) == 0)
+      , progress(tee,
                  Utilities::MPI::this_mpi_process(comm) == 0 &&
                    output.verbosity != io::OutputParameters::Verbosity::quiet)
-    {}
+    {
+      if (log_file.is_open())
+        base::set_warning_log(&log_file);
+    }
+
+
+    SceneConsole::~SceneConsole()
+    {
+      if (log_file.is_open())
+        base::set_warning_log(nullptr);
+    }
 
 
     template <int dim>
@@ -35,7 +73,18 @@ namespace softsand
     make_output_directory(const std::string &directory, const MPI_Comm comm)
     {
       if (Utilities::MPI::this_mpi_process(comm) == 0)
-        std::filesystem::create_directories(directory);
+        try
+          {
+            std::filesystem::create_directories(directory);
+          }
+        catch (const std::filesystem::filesystem_error &e)
+          {
+            base::throw_invalid_parameter("output/directory",
+                                          directory,
+                                          std::string("it cannot be created (") +
+                                            e.code().message() +
+                                            "): give a writable path");
+          }
       MPI_Barrier(comm);
     }
 
@@ -122,11 +171,60 @@ namespace softsand
     save_pack(const dem::GranularDynamics &dem,
               const std::string           &directory,
               const std::string           &name,
-              const MPI_Comm               comm)
+              const MPI_Comm               comm,
+              const std::string           &note)
     {
       const auto grains = dem.gather_grains();
       if (Utilities::MPI::this_mpi_process(comm) == 0)
-        io::write_grain_file<3>(directory + "/" + name, grains);
+        io::write_grain_file<3>(directory + "/" + name, grains, note);
+    }
+
+
+    template <int dim>
+    void
+    warn_about_fluid_model(const core::Parameters<dim> &p,
+                           const bool                   has_grains,
+                           const MPI_Comm               comm)
+    {
+      if (has_grains && p.fluid.theta == 0 &&
+          p.fluid.solid_model == fluid::FluidParameters::SolidModel::penalization)
+        base::warn("fluid/theta = 0 with fluid/solid model = penalization: "
+                   "the penalty density rho (1 + Theta (1 - vf)) is then rho, "
+                   "and the grains hold the fluid only by rho (1 - vf) / dt, "
+                   "as if they were fluid (the paper uses Theta = 1e6). Set "
+                   "fluid/theta > 0 or fluid/solid model = rigid nodes.",
+                   comm);
+    }
+
+
+    void
+    add_fluid_row(std::map<std::string, double> &row,
+                  const unsigned int             step,
+                  const double                   time,
+                  const double                   wall_time,
+                  io::StatisticsFile            &statistics)
+    {
+      row["step"]      = step;
+      row["time"]      = time;
+      row["wall_time"] = wall_time;
+      for (const auto &[name, value] : row)
+        statistics.add_value(name, value);
+    }
+
+
+    std::string
+    progress_of(const double time,
+                const double end_time,
+                const double loop_seconds)
+    {
+      const double       done = end_time > 0 ? time / end_time : 1;
+      std::ostringstream s;
+      s << std::fixed << std::setprecision(1) << 100 * done
+        << " % of the end time";
+      if (done > 0 && done < 1)
+        s << ", about " << std::setprecision(0)
+          << loop_seconds * (1 - done) / done << " s left";
+      return s.str();
     }
 
 
@@ -169,7 +267,10 @@ namespace softsand
   make_fluid_solver(parallel::distributed::Triangulation<dim> &,        \
                     const core::Parameters<dim> &,                            \
                     ConditionalOStream &,                                     \
-                    TimerOutput &);
+                    TimerOutput &);                                           \
+  template void warn_about_fluid_model(const core::Parameters<dim> &,         \
+                                       const bool,                            \
+                                       const MPI_Comm);
     SOFTSAND_INSTANTIATE(2)
     SOFTSAND_INSTANTIATE(3)
 #undef SOFTSAND_INSTANTIATE

@@ -560,7 +560,9 @@ namespace softsand
         std::copy(delta.block(b).begin(),
                   delta.block(b).end(),
                   x.block(b).begin());
-      return accept_linear_solution(x, control.last_step());
+      // A zero right-hand side (fluid and grains at rest) needs no solve:
+      // zero iterations, not the solver control's unset step count.
+      return accept_linear_solution(x, rhs_norm > 0 ? control.last_step() : 0);
     }
 
     template void

@@ -1092,7 +1092,10 @@ namespace softsand
       const unsigned int bdf_order)
     {
       rigid_reactions.clear();
-      if (rigid_dof_grain.empty())
+      // Every rank decides alike: assemble() below has collectives, and a
+      // rank without rigid nodes (or without cells) must still reach them.
+      if (Utilities::MPI::max(rigid_dof_grain.empty() ? 0u : 1u,
+                              mpi_communicator) == 0)
         return;
       const Quadrature<dim> nodes(fe.get_unit_support_points());
       FEValues<dim>  fe_values(fe, nodes, update_quadrature_points);

@@ -115,7 +115,8 @@ namespace softsand
     template <int dim>
     void
     write_grain_file(const std::string                  &filename,
-                     const std::vector<dem::Grain<dim>> &grains)
+                     const std::vector<dem::Grain<dim>> &grains,
+                     const std::string                  &note)
     {
       const std::string tmp = filename + ".tmp";
       {
@@ -127,8 +128,10 @@ namespace softsand
             << " grains\n# "
             << (dim == 2 ? "x y radius vx vy w" :
                            "x y z radius vx vy vz wx wy wz")
-            << '\n'
-            << std::setprecision(17);
+            << '\n';
+        if (!note.empty())
+          out << "# " << note << '\n';
+        out << std::setprecision(17);
         // "+ 0." writes -0 as 0.
         for (const auto &g : grains)
           {
@@ -166,9 +169,11 @@ namespace softsand
     read_grain_file<3>(const std::string &);
     template void
     write_grain_file<2>(const std::string &,
-                        const std::vector<dem::Grain<2>> &);
+                        const std::vector<dem::Grain<2>> &,
+                        const std::string &);
     template void
     write_grain_file<3>(const std::string &,
-                        const std::vector<dem::Grain<3>> &);
+                        const std::vector<dem::Grain<3>> &,
+                        const std::string &);
   } // namespace io
 } // namespace softsand

@@ -15,6 +15,7 @@ namespace softsand
                              const std::string &base_name)
       : directory(directory)
       , base_name(base_name)
+      , series(directory, base_name)
     {}
 
 
@@ -57,17 +58,8 @@ namespace softsand
       flags.time = time;
       data_out.set_flags(flags);
       const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-        directory + "/", base_name, counter++, comm, 5, 0);
-      records.emplace_back(time, pvtu);
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        {
-          const std::string pvd = directory + "/" + base_name + ".pvd";
-          {
-            std::ofstream out(pvd + ".tmp");
-            DataOutBase::write_pvd_record(out, records);
-          }
-          std::rename((pvd + ".tmp").c_str(), pvd.c_str());
-        }
+        directory + "/", base_name, series.next_number(), comm, 5, 0);
+      series.add(time, pvtu, comm);
     }
   } // namespace io
 } // namespace softsand

@@ -27,6 +27,9 @@ namespace softsand
       unsigned int              global_refinements = 0;
       /// Cells across the smallest grain diameter on grain surfaces (0: none).
       double                    cells_per_diameter = 8;
+      /// Run although the finest cells are too coarse for the grains (fewer
+      /// than 2 cells across the smallest).
+      bool                      allow_unresolved_grains = false;
       /// Uniform: refine the whole mesh to the grain-surface cell size.
       bool                      uniform_refinement = false;
       unsigned int              max_refinement_level = 14;

@@ -54,6 +54,12 @@ namespace softsand
     /// file (3 if absent); stops with a clear message for a missing file.
     unsigned int
     read_dimension(const std::string &filename);
+
+    /// The entries of parameter file @p filename set more than once (the
+    /// last one wins in ParameterHandler), each as a sentence naming the
+    /// entry and both lines.
+    std::vector<std::string>
+    duplicated_entries(const std::string &filename);
   } // namespace core
 } // namespace softsand
 

@@ -71,6 +71,9 @@ namespace softsand
       /// The grains' columns and the row to the file; stops on divergence.
       void
       record_grains(const double dt);
+      /// Warns when the coupling step exceeds the grains' response time.
+      void
+      warn_about_response_time() const;
       void
       report_progress(const bool last, const Timer &loop_clock);
       void
@@ -110,6 +113,8 @@ namespace softsand
       double finest_cell = 0;
       /// The grains' shortest response time (s).
       double response_time = 0;
+      /// Loop wall time of the last progress line (s).
+      double last_report = -1e300;
     };
   } // namespace drivers
 } // namespace softsand

@@ -70,6 +70,14 @@ namespace softsand
       void
       create_solver(const bool moving_solids);
 
+      /// A restarted run: the field files continue the series at @p time.
+      void
+      resume_field_output(const double time)
+      {
+        if (field_output)
+          field_output->resume(time);
+      }
+
       /**
        * After a solve: the fluid forces on the grains and the statistics
        * columns of the row; with @p write_files, the field and grain-force
@@ -135,6 +143,10 @@ namespace softsand
       }
 
     private:
+      /// Stops when the finest cells are too coarse for the grains, unless
+      /// mesh/allow unresolved grains.
+      void
+      check_resolution() const;
       void
       write_fields(const double time) const;
       void

@@ -68,6 +68,9 @@ namespace softsand
       check_settled();
       void
       report_progress();
+      /// The pack file's note (and a warning) for a pack saved unsettled.
+      std::string
+      unsettled_note() const;
       void
       finish(const bool last_recorded);
 

@@ -6,10 +6,13 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
 
+#include <softsand/base/tee_stream.h>
 #include <softsand/core/parameters.h>
 #include <softsand/dem/granular_dynamics.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
+#include <softsand/io/statistics_file.h>
 
+#include <fstream>
 #include <map>
 #include <memory>
 #include <set>
@@ -22,12 +25,26 @@ namespace softsand
   {
     using namespace dealii;
 
-    /// The screens of a scene: results (rank 0) and progress (rank 0,
-    /// unless output/verbosity = quiet).
-    struct SceneConsole
+    /**
+     * The screens of a scene: results (rank 0) and progress (rank 0, unless
+     * output/verbosity = quiet), both also written to the output
+     * directory's log.txt with the warnings; a restarted run (@p append)
+     * adds to the log.
+     */
+    class SceneConsole
     {
-      SceneConsole(const io::OutputParameters &output, const MPI_Comm comm);
+    public:
+      SceneConsole(const io::OutputParameters &output,
+                   const MPI_Comm              comm,
+                   const bool                  append = false);
+      ~SceneConsole();
 
+    private:
+      std::ofstream   log_file;
+      base::TeeBuffer tee_buffer;
+      std::ostream    tee;
+
+    public:
       ConditionalOStream pcout;
       ConditionalOStream progress;
     };
@@ -74,12 +91,35 @@ namespace softsand
     probe_box(const dem::DEMParameters &dem, const BoundingBox<3> &box);
 
     /// Writes the DEM's grains as a pack file (rank 0) to
-    /// @p directory/@p name.
+    /// @p directory/@p name, with @p note in its header.
     void
     save_pack(const dem::GranularDynamics &dem,
               const std::string           &directory,
               const std::string           &name,
-              const MPI_Comm               comm);
+              const MPI_Comm               comm,
+              const std::string           &note = "");
+
+    /// Warns (once) where the fluid model on these grains is outside its
+    /// validity: penalization with Theta = 0 does not hold the fluid.
+    template <int dim>
+    void
+    warn_about_fluid_model(const core::Parameters<dim> &parameters,
+                           const bool                   has_grains,
+                           const MPI_Comm               comm);
+
+    /// A fluid row: @p row with the step, time and wall time added, into
+    /// the statistics file (in the order of the names).
+    void
+    add_fluid_row(std::map<std::string, double> &row,
+                  const unsigned int             step,
+                  const double                   time,
+                  const double                   wall_time,
+                  io::StatisticsFile            &statistics);
+
+    /// For progress lines: "P % of the end time, about S s left" from the
+    /// time reached and the wall time its loop took.
+    std::string
+    progress_of(const double time, const double end_time, const double loop_seconds);
 
     /// The fixed-format results block that tests diff with numdiff, the
     /// entries of @p results but those @p left_out (timings, counts).

@@ -6,6 +6,8 @@
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/vector.h>
 
+#include <softsand/io/pvd_series.h>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +31,14 @@ namespace softsand
       FieldOutput(const std::string &directory, const std::string &base_name);
 
       /// @p cell_void_fraction is indexed by active cell index.
+      /// A restarted run continues the series of the run it resumes at
+      /// @p time (see PvdSeries::resume()).
+      void
+      resume(const double time)
+      {
+        series.resume(time);
+      }
+
       void
       write(const DoFHandler<dim>                    &dof_handler,
             const TrilinosWrappers::MPI::BlockVector &solution,
@@ -36,10 +46,9 @@ namespace softsand
             const double                              time);
 
     private:
-      std::string                                 directory;
-      std::string                                 base_name;
-      unsigned int                                counter = 0;
-      std::vector<std::pair<double, std::string>> records;
+      std::string directory;
+      std::string base_name;
+      PvdSeries   series;
     };
   } // namespace io
 } // namespace softsand

@@ -27,11 +27,14 @@ namespace softsand
     /// Write a pack with all columns at full precision, so that reading it
     /// back restores the grains exactly. The file is written to
     /// filename + ".tmp" and renamed, so that a run killed while writing
-    /// never leaves a truncated pack. Call it on one MPI rank only.
+    /// never leaves a truncated pack. A @p note becomes a comment line of
+    /// the header (e.g. that the pack was saved unsettled). Call it on one
+    /// MPI rank only.
     template <int dim>
     void
     write_grain_file(const std::string                  &filename,
-                     const std::vector<dem::Grain<dim>> &grains);
+                     const std::vector<dem::Grain<dim>> &grains,
+                     const std::string                  &note = "");
   } // namespace io
 } // namespace softsand
 

@@ -3,6 +3,8 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <softsand/io/pvd_series.h>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,16 +25,23 @@ namespace softsand
     public:
       GrainOutput(const std::string &directory, const std::string &base_name);
 
+      /// A restarted run continues the series of the run it resumes at
+      /// @p time (see PvdSeries::resume()).
+      void
+      resume(const double time)
+      {
+        series.resume(time);
+      }
+
       void
       write(const Particles::ParticleHandler<3> &particles,
             const double                         time,
             const MPI_Comm                       comm);
 
     private:
-      std::string                                 directory;
-      std::string                                 base_name;
-      unsigned int                                counter = 0;
-      std::vector<std::pair<double, std::string>> records;
+      std::string directory;
+      std::string base_name;
+      PvdSeries   series;
     };
   } // namespace io
 } // namespace softsand

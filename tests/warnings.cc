@@ -1,0 +1,119 @@
+// Runs outside their model's validity or on doubtful input go on with a
+// warning (once): an entry set twice in a .prm (both lines named), a pack
+// saved unsettled (and its file's header says so), fluid/theta = 0 with the
+// penalization, a coupling step above the grains' response time. Settings
+// a scene would ignore (restart, checkpoints outside coupled scenes) stop
+// it instead.
+
+#include <deal.II/base/mpi.h>
+
+#include <softsand/base/parameter_tools.h>
+#include <softsand/base/warnings.h>
+#include <softsand/core/parameters.h>
+
+#include <fstream>
+
+#include "test_scenes.h"
+#include "tests.h"
+
+namespace
+{
+  /// Whether a warning containing @p text was given.
+  bool
+  warned(const std::string &text)
+  {
+    for (const auto &w : softsand::base::warnings_given())
+      if (w.find(text) != std::string::npos)
+        return true;
+    return false;
+  }
+
+  /// The message of the error @p text stops with, or "accepted".
+  std::string
+  stops(const std::string &text)
+  {
+    try
+      {
+        run_granular_scene(text);
+      }
+    catch (const std::exception &e)
+      {
+        return softsand::base::error_message(e);
+      }
+    return "accepted (wrong)";
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+  using namespace softsand;
+
+  // 1. An entry set twice.
+  {
+    std::ofstream("twice.prm")
+      << "subsection mesh\n  set cells per diameter = 4\nend\n"
+         "subsection fluid\n  set theta = 1e6\nend\n"
+         "subsection mesh\n  # again\n  set cells per diameter  = 8\nend\n";
+    for (const auto &d : core::duplicated_entries("twice.prm"))
+      deallog << d << std::endl;
+  }
+
+  // 2. A pour stopped before it settled: saved with a note and a warning.
+  {
+    const auto r = run_granular_scene(
+      scene_text("pour") +
+      "subsection simulation control\n set end time = 0.01\nend\n");
+    std::ifstream in("results/pack.txt");
+    std::string   line, note;
+    while (std::getline(in, line) && line[0] == '#')
+      if (line.find("unsettled") != std::string::npos)
+        note = line.substr(0, line.find(" saved"));
+    deallog << "pour to 10 ms: settled " << r.at("settled")
+            << ", pack header: '" << note << "', warned: "
+            << (warned("the pack is unsettled") ? "yes" : "no") << std::endl;
+  }
+
+  // 3. The penalization without penalty.
+  {
+    run_scene<3>(scene_text("drag_sphere") +
+                 "subsection fluid\n set theta = 0\n"
+                 " set solid model = penalization\nend\n"
+                 "subsection mesh\n set cells per diameter = 2\nend\n");
+    deallog << "theta = 0 with penalization warned: "
+            << (warned("fluid/theta = 0") ? "yes" : "no") << std::endl;
+  }
+
+  // 4. A coupled step of 5.7 response times of the free sphere.
+  {
+    run_scene<3>(scene_text("free_sphere") +
+                 "subsection simulation control\n set time step = 0.1\n"
+                 " set end time = 0.1\nend\n"
+                 "subsection mesh\n set cells per diameter = 2\nend\n");
+    std::string ratio;
+    for (const auto &w : base::warnings_given())
+      if (const auto k = w.find(" s is "); k != std::string::npos)
+        ratio = w.substr(k + 6, w.find(" times") - k - 6);
+    deallog << "coupled time step 0.1 s: warned, " << ratio
+            << " times the response time" << std::endl;
+  }
+
+  // 5. Settings a granular scene would ignore.
+  const std::string granular =
+    "subsection simulation control\n set mode = granular\n"
+    " set end time = 1e-4\n set %s\nend\n"
+    "subsection mesh\n set lower corner = 0, 0, 0\n"
+    " set upper corner = 1e-3, 1e-3, 1e-3\nend\n"
+    "subsection output\n set directory = results\n set write vtu = false\n"
+    " set verbosity = quiet\nend\n";
+  for (const std::string entry : {"restart = true", "checkpoint interval = 5"})
+    {
+      std::string text = granular;
+      text.replace(text.find("%s"), 2, entry);
+      deallog << "granular with " << entry << ": " << stops(text)
+              << std::endl;
+    }
+}
