@@ -1,6 +1,7 @@
 // Checkpoint and restart of the coupled scene: the fluid mesh and solution
-// (deal.II serialization), the DEM state, and a text file with the step,
-// where the mesh was last adapted and the held-force history.
+// (deal.II serialization) and the DEM state in checkpoint-STEP.*, and
+// checkpoint.info with the step, where the mesh was last adapted and the
+// held-force history.
 
 #include <softsand/drivers/coupled_scene.h>
 
@@ -13,23 +14,40 @@ namespace softsand
 {
   namespace drivers
   {
+    namespace
+    {
+      /// The files of the checkpoint of step @p step: checkpoint-STEP.*.
+      std::string
+      checkpoint_base(const std::string &directory, const unsigned int step)
+      {
+        return directory + "/checkpoint-" + std::to_string(step);
+      }
+    } // namespace
+
+
     void
     CoupledScene::write_checkpoint()
     {
       TimerOutput::Scope t(timer, "checkpoint");
-      const std::string  base = parameters.output.directory + "/checkpoint";
-      // Write to temporary names, then rename: a run stopped while writing
-      // leaves the previous checkpoint intact.
+      namespace fs          = std::filesystem;
+      const std::string dir = parameters.output.directory;
+      // The step's files under names of their own, then checkpoint.info
+      // naming them (written aside and renamed, atomic), then the older
+      // checkpoints removed: a run killed at any point leaves an info file
+      // and the complete checkpoint it names.
+      const std::string base = checkpoint_base(dir, step);
       fluid.solver().prepare_for_serialization();
-      fluid.triangulation().save(base + ".fluid.tmp");
+      fluid.triangulation().save(base + ".fluid");
       {
         std::ostringstream dem_state;
         dem->save_state(dem_state);
         if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
           {
-            std::ofstream out(base + ".dem.tmp", std::ios::binary);
-            out << dem_state.str();
-            std::ofstream info(base + ".info.tmp");
+            {
+              std::ofstream out(base + ".dem", std::ios::binary);
+              out << dem_state.str();
+            }
+            std::ofstream info(dir + "/checkpoint.info.tmp");
             const auto   &centers = fluid.centers_at_adaptation();
             info << std::setprecision(17) << step << ' ' << time << ' '
                  << fluid.solver().n_steps_done() << ' ' << n_mesh_adaptations
@@ -46,22 +64,15 @@ namespace softsand
       MPI_Barrier(mpi_communicator);
       if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         {
-          namespace fs = std::filesystem;
-          const fs::path dir(parameters.output.directory);
-          // The info file last: it marks the checkpoint complete.
+          fs::rename(dir + "/checkpoint.info.tmp", dir + "/checkpoint.info");
+          const std::string current = "checkpoint-" + std::to_string(step) + ".";
           for (const auto &entry : fs::directory_iterator(dir))
             {
               const std::string name = entry.path().filename().string();
-              if (name.rfind("checkpoint.", 0) == 0 &&
-                  name.find(".tmp") != std::string::npos &&
-                  name != "checkpoint.info.tmp")
-                {
-                  std::string final_name = name;
-                  final_name.erase(final_name.find(".tmp"), 4);
-                  fs::rename(entry.path(), dir / final_name);
-                }
+              if (name.rfind("checkpoint-", 0) == 0 &&
+                  name.rfind(current, 0) != 0)
+                fs::remove(entry.path());
             }
-          fs::rename(dir / "checkpoint.info.tmp", dir / "checkpoint.info");
         }
       MPI_Barrier(mpi_communicator);
     }
@@ -71,21 +82,23 @@ namespace softsand
     CoupledScene::read_checkpoint()
     {
       TimerOutput::Scope t(timer, "checkpoint");
-      const std::string  base = parameters.output.directory + "/checkpoint";
-      std::ifstream      info(base + ".info");
+      const std::string  info_name =
+        parameters.output.directory + "/checkpoint.info";
+      std::ifstream info(info_name);
       AssertThrow(info.good(),
                   ExcMessage("simulation control/restart = true, but there "
                              "is no checkpoint <" +
-                             base +
-                             ".info>: run with a checkpoint interval > 0 "
+                             info_name +
+                             ">: run with a checkpoint interval > 0 "
                              "first."));
       unsigned int fluid_steps = 0, n_centers = 0;
       info >> step >> time >> fluid_steps >> n_mesh_adaptations >> n_centers;
+      const std::string base = checkpoint_base(parameters.output.directory, step);
       std::vector<Point<3>> centers(n_centers);
       for (auto &c : centers)
         for (unsigned int d = 0; d < 3; ++d)
           info >> c[d];
-      held_force->load(info, base + ".info");
+      held_force->load(info, info_name);
 
       // The coarse mesh as at the start, then the saved refinement.
       fluid.make_mesh(false, true);
