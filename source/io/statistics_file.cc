@@ -85,8 +85,16 @@ namespace softsand
     {
       if (columns.empty())
         {
+          // step, time and wall_time lead every table; the rest keep the
+          // order the scene added them in.
+          for (const std::string lead : {"step", "time", "wall_time"})
+            for (const auto &entry : row)
+              if (entry.first == lead)
+                columns.push_back(lead);
           for (const auto &entry : row)
-            columns.push_back(entry.first);
+            if (std::find(columns.begin(), columns.end(), entry.first) ==
+                columns.end())
+              columns.push_back(entry.first);
           if (is_writer)
             {
               file << '#';
