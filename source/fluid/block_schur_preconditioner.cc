@@ -10,16 +10,23 @@ namespace softsand
   {
     namespace
     {
-      /// B diag(A)^-1 B^T of the assembled saddle-point matrix, with a
-      /// regular diagonal on every row.
+      /**
+       * X = B D^-1 B^T + C of the assembled saddle-point matrix
+       * [A B^T; B -C], D = diag(A), with a regular diagonal on every row;
+       * returns D^-1 in @p inverse and, in @p decoupled_inverse, 1 / the
+       * (1,1) diagonal of the pressure rows that B does not reach
+       * (constrained), else 0.
+       */
       void
       build_discrete_brinkman(
         const TrilinosWrappers::BlockSparseMatrix &system_matrix,
-        TrilinosWrappers::SparseMatrix            &discrete_brinkman)
+        TrilinosWrappers::SparseMatrix            &discrete_brinkman,
+        TrilinosWrappers::MPI::Vector             &inverse,
+        TrilinosWrappers::MPI::Vector             &decoupled_inverse)
       {
-        const auto                   &a = system_matrix.block(0, 0);
-        TrilinosWrappers::MPI::Vector inverse(a.locally_owned_domain_indices(),
-                                              a.get_mpi_communicator());
+        const auto &a = system_matrix.block(0, 0);
+        inverse.reinit(a.locally_owned_domain_indices(),
+                       a.get_mpi_communicator());
         for (const auto i : inverse.locally_owned_elements())
           {
             const double d = a.diag_element(i);
@@ -32,19 +39,29 @@ namespace softsand
         system_matrix.block(1, 0).mmult(product,
                                         system_matrix.block(0, 1),
                                         inverse);
-        // Constrained (hanging) pressure nodes have empty B rows: add the
-        // pressure block, which holds their constraint diagonal, then give
-        // zero diagonals the mean, so that AMG and CG see a regular matrix
-        // (these values are overwritten by the constraints).
+        const auto &c = system_matrix.block(1, 1);
+        decoupled_inverse.reinit(c.locally_owned_range_indices(),
+                                 c.get_mpi_communicator());
+        const auto range = product.local_range();
+        for (auto i = range.first; i < range.second; ++i)
+          if (product.diag_element(i) == 0 && c.diag_element(i) != 0)
+            decoupled_inverse(i) = 1. / c.diag_element(i);
+        decoupled_inverse.compress(VectorOperation::insert);
+        // The pressure block is -C (rigid-node smoothing) on coupled rows
+        // and the positive constraint diagonal on constrained rows, which
+        // have empty B rows: subtract it, then make the constrained
+        // diagonals positive again and give zero diagonals the mean, so
+        // that AMG and CG see a regular positive matrix (these rows are
+        // overwritten by the constraints).
         {
           Epetra_CrsMatrix *sum  = nullptr;
           const int         ierr = EpetraExt::MatrixMatrix::Add(
             product.trilinos_matrix(),
             false,
             1.,
-            system_matrix.block(1, 1).trilinos_matrix(),
+            c.trilinos_matrix(),
             false,
-            1.,
+            -1.,
             sum);
           AssertThrow(ierr == 0 && sum != nullptr,
                       ExcMessage("EpetraExt could not add the pressure block "
@@ -54,8 +71,7 @@ namespace softsand
           discrete_brinkman.reinit(*sum);
           delete sum;
         }
-        double     sum = 0, count = 0;
-        const auto range = discrete_brinkman.local_range();
+        double sum = 0, count = 0;
         for (auto i = range.first; i < range.second; ++i)
           if (discrete_brinkman.diag_element(i) > 0)
             {
@@ -66,8 +82,13 @@ namespace softsand
         const double   mean = Utilities::MPI::sum(sum, comm) /
                             std::max(1., Utilities::MPI::sum(count, comm));
         for (auto i = range.first; i < range.second; ++i)
-          if (!(discrete_brinkman.diag_element(i) > 0))
-            discrete_brinkman.set(i, i, mean);
+          {
+            const double d = discrete_brinkman.diag_element(i);
+            if (d < 0)
+              discrete_brinkman.set(i, i, -d);
+            else if (!(d > 0))
+              discrete_brinkman.set(i, i, mean);
+          }
         discrete_brinkman.compress(VectorOperation::insert);
       }
     } // namespace
@@ -93,12 +114,14 @@ namespace softsand
       const bool                                 convection,
       const unsigned int                         amg_sweeps,
       const std::string                         &velocity_smoother,
-      const bool                                 discrete_brinkman_schur,
+      const SolverParameters::Schur              schur,
       const double                               inner_tolerance)
       : system_matrix(system_matrix)
       , velocity_smoother(velocity_smoother)
+      , schur(schur)
       , use_laplace(pressure_laplace_matrix != nullptr ||
-                    discrete_brinkman_schur)
+                    schur == SolverParameters::Schur::discrete_brinkman ||
+                    schur == SolverParameters::Schur::least_squares_commutator)
       , inner_tolerance(inner_tolerance)
     {
       {
@@ -111,13 +134,17 @@ namespace softsand
         data.smoother_type         = this->velocity_smoother.c_str();
         velocity_amg.initialize(system_matrix.block(0, 0), data);
       }
-      pressure_mass_ilu.initialize(pressure_mass_matrix.block(1, 1));
+      if (schur != SolverParameters::Schur::least_squares_commutator)
+        pressure_mass_ilu.initialize(pressure_mass_matrix.block(1, 1));
       if (use_laplace)
         {
           const auto data = pressure_laplace_amg_data();
-          if (discrete_brinkman_schur)
+          if (pressure_laplace_matrix == nullptr)
             {
-              build_discrete_brinkman(system_matrix, discrete_brinkman);
+              build_discrete_brinkman(system_matrix,
+                                      discrete_brinkman,
+                                      inverse_velocity_diagonal,
+                                      decoupled_pressure_inverse);
               pressure_laplace_amg.initialize(discrete_brinkman, data);
             }
           else
@@ -126,40 +153,65 @@ namespace softsand
         }
       tmp_u.reinit(system_matrix.block(0, 0).locally_owned_range_indices(),
                    system_matrix.get_mpi_communicator());
+      tmp_u2.reinit(tmp_u);
       tmp_p.reinit(system_matrix.block(1, 1).locally_owned_range_indices(),
                    system_matrix.get_mpi_communicator());
+      tmp_p2.reinit(tmp_p);
+    }
+
+
+    void
+    BlockSchurPreconditioner::solve_discrete_brinkman(
+      TrilinosWrappers::MPI::Vector       &dst,
+      const TrilinosWrappers::MPI::Vector &src) const
+    {
+      // Nearly closed pores make X nearly singular: an inner CG that stops
+      // at its bound still returns a usable (FGMRES) preconditioner.
+      ReductionControl control(200, 1e-300, inner_tolerance, false, false);
+      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+      dst = 0;
+      try
+        {
+          cg.solve(discrete_brinkman, dst, src, pressure_laplace_amg);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {}
     }
 
 
     void
     BlockSchurPreconditioner::vmult(BlockVector &dst, const BlockVector &src) const
     {
-      // Pressure: dst_p = -S^-1 src_p.
-      pressure_mass_ilu.vmult(dst.block(1), src.block(1));
-      if (use_laplace)
+      if (schur == SolverParameters::Schur::least_squares_commutator)
         {
-          if (discrete_brinkman.m() > 0)
-            {
-              // A preconditioner may be inexact (FGMRES): an inner solve
-              // that stops at its bound (nearly closed pores make B D^-1 B^T
-              // nearly singular) still returns its last iterate.
-              ReductionControl control(
-                200, 1e-300, inner_tolerance, false, false);
-              SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-              tmp_p = 0;
-              try
-                {
-                  cg.solve(discrete_brinkman, tmp_p, src.block(1),
-                           pressure_laplace_amg);
-                }
-              catch (const SolverControl::NoConvergence &)
-                {}
-            }
-          else
-            pressure_laplace_amg.vmult(tmp_p, src.block(1));
+          // dst_p = -X^-1 (B D^-1 A D^-1 B^T) X^-1 src_p.
+          solve_discrete_brinkman(tmp_p, src.block(1));
+          system_matrix.block(0, 1).vmult(tmp_u, tmp_p);
+          tmp_u.scale(inverse_velocity_diagonal);
+          system_matrix.block(0, 0).vmult(tmp_u2, tmp_u);
+          tmp_u2.scale(inverse_velocity_diagonal);
+          system_matrix.block(1, 0).vmult(tmp_p2, tmp_u2);
+          solve_discrete_brinkman(dst.block(1), tmp_p2);
+          dst.block(1) *= -1.;
+          // Constrained pressure rows are decoupled: solve them exactly.
+          tmp_p = src.block(1);
+          tmp_p.scale(decoupled_pressure_inverse);
           dst.block(1) += tmp_p;
         }
-      dst.block(1) *= -1.;
+      else
+        {
+          // Pressure: dst_p = -S^-1 src_p.
+          pressure_mass_ilu.vmult(dst.block(1), src.block(1));
+          if (use_laplace)
+            {
+              if (discrete_brinkman.m() > 0)
+                solve_discrete_brinkman(tmp_p, src.block(1));
+              else
+                pressure_laplace_amg.vmult(tmp_p, src.block(1));
+              dst.block(1) += tmp_p;
+            }
+          dst.block(1) *= -1.;
+        }
       // Velocity: dst_u = A^-1 (src_u - B^T dst_p).
       system_matrix.block(0, 1).vmult(tmp_u, dst.block(1));
       tmp_u.sadd(-1., 1., src.block(0));

@@ -171,7 +171,8 @@ namespace softsand
         "schur complement",
         "cahouet chabard",
         Patterns::Selection(
-          "cahouet chabard|discrete brinkman|weighted mass|mass"),
+          "cahouet chabard|discrete brinkman|least squares commutator|"
+          "weighted mass|mass"),
         "Pressure Schur complement approximation: cahouet chabard = "
         "mu M_p^-1 + (-div (1/beta) grad)^-1 with beta the "
         "penalty/inertia coefficient at each quadrature point (robust in "
@@ -180,7 +181,11 @@ namespace softsand
         "block, solved by CG + AMG to 'schur inner tolerance' (dense "
         "packs: a pore closed by grains stays closed in D, where the "
         "quadrature-point Laplacian leaks through cut cells; switches to "
-        "the matrix-based solver); weighted mass = mass matrix weighted "
+        "the matrix-based solver); least squares commutator = "
+        "X^-1 (B D^-1 A D^-1 B^T) X^-1 with X = B D^-1 B^T (diagonally "
+        "scaled BFBT: the Darcy limit inside grains, the commutator in the "
+        "fluid, convection included; two inner CG solves; matrix based); "
+        "weighted mass = mass matrix weighted "
         "by 1/(mu + beta h^2); mass = 1/mu mass matrix (plain Stokes).");
       prm.declare_entry("schur inner tolerance",
                         "1e-4",
@@ -189,6 +194,21 @@ namespace softsand
                         "tolerance of the inner CG on B D^-1 B^T "
                         "(dimensionless). 1e-2 gave 7x more FGMRES "
                         "iterations on a dense pack than 1e-4.");
+      prm.declare_entry(
+        "reuse preconditioner",
+        "true",
+        Patterns::Bool(),
+        "Keep the preconditioner (AMG hierarchies, Schur blocks) of the "
+        "last matrix-based solve while the mesh and the matrix sparsity are "
+        "unchanged, e.g. over coupling steps whose grains moved less than a "
+        "cell; FGMRES stays exact, only its iteration count can grow.");
+      prm.declare_entry(
+        "preconditioner rebuild factor",
+        "1.5",
+        Patterns::Double(1),
+        "reuse preconditioner = true: rebuild it for the next solve when a "
+        "solve needed more than this factor times the iterations of the "
+        "solve it was built for (plus 5) (dimensionless).");
       prm.declare_entry("velocity amg sweeps",
                         "2",
                         Patterns::Integer(1, 10),
@@ -268,9 +288,14 @@ namespace softsand
       const std::string s      = prm.get("schur complement");
       schur = s == "cahouet chabard"   ? Schur::cahouet_chabard :
               s == "discrete brinkman" ? Schur::discrete_brinkman :
+              s == "least squares commutator" ?
+                                         Schur::least_squares_commutator :
               s == "weighted mass"     ? Schur::weighted_mass :
                                        Schur::mass;
       schur_inner_tolerance = prm.get_double("schur inner tolerance");
+      reuse_preconditioner  = prm.get_bool("reuse preconditioner");
+      preconditioner_rebuild_factor =
+        prm.get_double("preconditioner rebuild factor");
       velocity_amg_sweeps = prm.get_integer("velocity amg sweeps");
       velocity_amg_smoother = prm.get("velocity amg smoother") == "chebyshev" ?
                                 AmgSmoother::chebyshev :

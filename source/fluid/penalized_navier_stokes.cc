@@ -81,17 +81,6 @@ namespace softsand
         , dof_handler_velocity(tria)
         , dof_handler_pressure(tria)
     {
-      // With rigid nodes the cut cells carry no penalty: B diag(A)^-1 B^T
-      // misses the coupling of the pressure there, and the drag sphere's
-      // grain force came out at -0.6 of the balance with the box.
-      AssertThrow(
-        !(solver_parameters.schur ==
-            SolverParameters::Schur::discrete_brinkman &&
-          fluid_parameters.solid_model ==
-            FluidParameters::SolidModel::rigid_nodes),
-        ExcMessage("'fluid solver/schur complement = discrete brinkman' needs "
-                   "'fluid/solid model = penalization' (it was 'rigid "
-                   "nodes'); use 'cahouet chabard' with rigid nodes."));
       body_force = std::make_unique<FunctionParser<dim>>(dim);
       std::string expr = fluid_parameters.body_force;
       // Accept a 3-component default in 2D by dropping the z component.
@@ -535,6 +524,8 @@ namespace softsand
     void
     PenalizedNavierStokes<dim>::reinit_system_matrix()
     {
+      // The preconditioner refers to the old matrix.
+      preconditioner.reset();
       system_matrix.clear();
       Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
       for (unsigned int c = 0; c < dim + 1; ++c)
@@ -642,8 +633,12 @@ namespace softsand
       std::vector<double>         shape_value(dofs_per_cell);
       std::vector<Tensor<1, dim>> shape_grad(dofs_per_cell);
       std::vector<unsigned int>   component(dofs_per_cell);
+      std::array<std::vector<unsigned int>, dim + 1> dofs_of_component;
       for (unsigned int k = 0; k < dofs_per_cell; ++k)
-        component[k] = fe.system_to_component_index(k).first;
+        {
+          component[k] = fe.system_to_component_index(k).first;
+          dofs_of_component[component[k]].push_back(k);
+        }
 
       std::vector<Tensor<1, dim>> u_current(n_q), u_old(n_q), u_older(n_q);
       std::vector<Tensor<2, dim>> grad_u_current(n_q), grad_u_old(n_q),
@@ -825,65 +820,67 @@ namespace softsand
                 const double temam =
                   (convection && kind == Assembly::transient) ? 0.5 * rho * div_w :
                                                                 0.;
+                // Loops over the dofs of each component: Taylor-Hood is
+                // primitive, so only the couplings below are nonzero.
+                const auto &pressure_dofs = dofs_of_component[dim];
+                const bool  cross_components = newton || gamma != 0;
                 for (unsigned int i = 0; i < dofs_per_cell; ++i)
                   {
                     const unsigned int ci  = component[i];
                     const double       phi = shape_value[i];
                     if (ci == dim) // pressure test function
                       {
-                        for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                        for (unsigned int cj = 0; cj < dim; ++cj)
+                          for (const unsigned int j : dofs_of_component[cj])
+                            local_matrix(i, j) -= phi * shape_grad[j][cj] * JxW;
+                        for (const unsigned int j : pressure_dofs)
                           {
-                            const unsigned int cj = component[j];
-                            if (cj < dim)
-                              local_matrix(i, j) -=
-                                phi * shape_grad[j][cj] * JxW;
-                            else
+                            const double grad_grad =
+                              shape_grad[i] * shape_grad[j];
+                            if (solid_smoothing > 0)
                               {
-                                if (solid_smoothing > 0)
-                                  {
-                                    const double smoothing =
-                                      solid_smoothing *
-                                      (shape_grad[i] * shape_grad[j]) * JxW;
-                                    local_matrix(i, j) -= smoothing;
-                                    local_mass(i, j) += smoothing;
-                                  }
-                                local_mass(i, j) +=
-                                  mass_weight * phi * shape_value[j] * JxW;
-                                if (laplace_weight != 0)
-                                  local_laplace(i, j) +=
-                                    laplace_weight *
-                                    (shape_grad[i] * shape_grad[j]) * JxW;
+                                const double smoothing =
+                                  solid_smoothing * grad_grad * JxW;
+                                local_matrix(i, j) -= smoothing;
+                                local_mass(i, j) += smoothing;
                               }
+                            local_mass(i, j) +=
+                              mass_weight * phi * shape_value[j] * JxW;
+                            if (laplace_weight != 0)
+                              local_laplace(i, j) +=
+                                laplace_weight * grad_grad * JxW;
                           }
                         continue;
                       }
                     // Velocity test function in component ci.
-                    const double advect_i = convection ? rho * phi : 0.;
-                    for (unsigned int j = 0; j < dofs_per_cell; ++j)
+                    const Tensor<1, dim> &grad_i = shape_grad[i];
+                    for (const unsigned int j : pressure_dofs)
+                      local_matrix(i, j) -= grad_i[ci] * shape_value[j] * JxW;
+                    if (!reservoir)
                       {
-                        const unsigned int cj = component[j];
-                        double             a  = 0;
-                        if (cj == dim)
-                          a = -shape_grad[i][ci] * shape_value[j];
-                        else if (cj == ci)
+                        const double advect_i = convection ? rho * phi : 0.;
+                        const double zeroth =
+                          beta + temam +
+                          (newton ? advect_i * grad_w[ci][ci] : 0.);
+                        for (const unsigned int j : dofs_of_component[ci])
                           {
-                            a = mu * (shape_grad[i] * shape_grad[j]) +
-                                (beta + temam) * phi * shape_value[j];
+                            double a = mu * (grad_i * shape_grad[j]) +
+                                       zeroth * phi * shape_value[j];
                             if (convection)
                               a += advect_i * (w * shape_grad[j]);
-                            if (newton)
-                              a += advect_i * grad_w[ci][ci] * shape_value[j];
+                            local_matrix(i, j) += a * JxW;
                           }
-                        else if (newton)
-                          a = advect_i * grad_w[ci][cj] * shape_value[j];
-                        if (cj < dim)
-                          a += gamma * shape_grad[i][ci] * shape_grad[j][cj];
-                        if (reservoir && cj < dim)
-                          a = 0;
-                        local_matrix(i, j) += a * JxW;
+                        if (cross_components)
+                          for (unsigned int cj = 0; cj < dim; ++cj)
+                            for (const unsigned int j : dofs_of_component[cj])
+                              {
+                                double a = gamma * grad_i[ci] * shape_grad[j][cj];
+                                if (newton && cj != ci)
+                                  a += advect_i * grad_w[ci][cj] * shape_value[j];
+                                local_matrix(i, j) += a * JxW;
+                              }
+                        local_rhs(i) += (f[ci] + beta_rhs[ci]) * phi * JxW;
                       }
-                    if (!reservoir)
-                      local_rhs(i) += (f[ci] + beta_rhs[ci]) * phi * JxW;
                   }
               }
 
@@ -952,26 +949,38 @@ namespace softsand
     {
       TimerOutput::Scope t(timer, "fluid: solve");
 
-      std::vector<std::vector<bool>> constant_modes;
-      const FEValuesExtractors::Vector velocities(0);
-      DoFTools::extract_constant_modes(dof_handler,
-                                       fe.component_mask(velocities),
-                                       constant_modes);
-      BlockSchurPreconditioner preconditioner(
-        system_matrix,
-        pressure_mass_matrix,
-        solver_parameters.schur == SolverParameters::Schur::cahouet_chabard ?
-          &pressure_laplace_matrix :
-          nullptr,
-        constant_modes,
-        convection,
-        solver_parameters.velocity_amg_sweeps,
-        solver_parameters.velocity_amg_smoother ==
-            SolverParameters::AmgSmoother::chebyshev ?
-          "Chebyshev" :
-          "symmetric Gauss-Seidel",
-        solver_parameters.schur == SolverParameters::Schur::discrete_brinkman,
-        solver_parameters.schur_inner_tolerance);
+      // A kept preconditioner (same mesh and sparsity, same kind of block)
+      // preconditions the new matrix: FGMRES stays exact, and the
+      // iteration count tells when to rebuild.
+      if (preconditioner == nullptr || !solver_parameters.reuse_preconditioner ||
+          preconditioner_convection != convection)
+        {
+          TimerOutput::Scope t(timer, "fluid: preconditioner setup");
+          preconditioner.reset();
+          std::vector<std::vector<bool>> constant_modes;
+          const FEValuesExtractors::Vector velocities(0);
+          DoFTools::extract_constant_modes(dof_handler,
+                                           fe.component_mask(velocities),
+                                           constant_modes);
+          preconditioner = std::make_unique<BlockSchurPreconditioner>(
+            system_matrix,
+            pressure_mass_matrix,
+            solver_parameters.schur ==
+                SolverParameters::Schur::cahouet_chabard ?
+              &pressure_laplace_matrix :
+              nullptr,
+            constant_modes,
+            convection,
+            solver_parameters.velocity_amg_sweeps,
+            solver_parameters.velocity_amg_smoother ==
+                SolverParameters::AmgSmoother::chebyshev ?
+              "Chebyshev" :
+              "symmetric Gauss-Seidel",
+            solver_parameters.schur,
+            solver_parameters.schur_inner_tolerance);
+          preconditioner_convection = convection;
+          preconditioner_iterations = 0;
+        }
 
       BlockVector x(owned_partitioning, mpi_communicator);
       x = solution; // start from the previous state: cheap re-solves
@@ -1020,15 +1029,24 @@ namespace softsand
       try
         {
           if (rhs_norm > 0)
-            solver.solve(system_matrix, x, system_rhs, preconditioner);
+            solver.solve(system_matrix, x, system_rhs, *preconditioner);
         }
       catch (const SolverControl::NoConvergence &e)
         {
           AssertThrow(false,
                       ExcMessage(linear_solver_failure(e, control.tolerance())));
         }
+      // The first solve with a preconditioner sets its reference count;
+      // one that needs clearly more asks for a new one next time.
+      const unsigned int iterations = rhs_norm > 0 ? control.last_step() : 0;
+      if (preconditioner_iterations == 0)
+        preconditioner_iterations = std::max(iterations, 1u);
+      else if (iterations > solver_parameters.preconditioner_rebuild_factor *
+                                preconditioner_iterations +
+                              5)
+        preconditioner.reset();
       // A zero right-hand side (fluid and grains at rest) needs no solve.
-      return accept_linear_solution(x, rhs_norm > 0 ? control.last_step() : 0);
+      return accept_linear_solution(x, iterations);
     }
 
 

@@ -7,6 +7,8 @@
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
 
+#include <softsand/fluid/fluid_parameters.h>
+
 #include <string>
 #include <vector>
 
@@ -15,6 +17,11 @@ namespace softsand
   namespace fluid
   {
     using namespace dealii;
+
+    /// AMG settings of the pressure Laplacian of the Schur approximation
+    /// (shared by the matrix-based and the matrix-free solves).
+    TrilinosWrappers::PreconditionAMG::AdditionalData
+    pressure_laplace_amg_data();
 
     /**
      * Block upper-triangular preconditioner for the saddle-point system
@@ -31,21 +38,23 @@ namespace softsand
      * the Laplacian it is the plain (or weighted) pressure-mass
      * preconditioner.
      *
-     * With @p discrete_brinkman_schur, L is instead the discrete
-     * B D^-1 B^T with D = diag(A) (viscous + penalty + inertia; a sparse
-     * triple product), inverted by CG with AMG to a relative inner
-     * tolerance. In a dense pack the continuous L_(1/beta), weighted per
-     * quadrature point, lets pressure "flow" through cut cells that the
-     * assembled A closes: FGMRES needed 2,453 iterations on a 13-grain piece
-     * of the Fig. 3 pack, 92 with this (doc/validation.md). One AMG V-cycle
-     * on B D^-1 B^T is not enough there (1,768): the contrast of D (1e11)
-     * needs the inner CG. D with the penalty alone (no viscous part) gave
-     * 572.
+     * schur = discrete brinkman: L is instead the discrete
+     * X = B D^-1 B^T + C with D = diag(A) (viscous + penalty + inertia; a
+     * sparse triple product) and C the pressure block (rigid-node pressure
+     * smoothing), inverted by CG with AMG to a relative inner tolerance. In
+     * a dense pack the continuous L_(1/beta), weighted per quadrature
+     * point, lets pressure "flow" through cut cells that the assembled A
+     * closes: FGMRES needed 2,453 iterations on a 13-grain piece of the
+     * Fig. 3 pack, 92 with this (doc/validation.md). One AMG V-cycle on X
+     * is not enough there (1,768): the contrast of D (1e11) needs the inner
+     * CG.
+     *
+     * schur = least squares commutator: S^-1 ~ X^-1 (B D^-1 A D^-1 B^T)
+     * X^-1 (Elman et al.'s diagonally scaled BFBT; no pressure mass matrix).
+     * Where the penalty dominates, A ~ D and it reduces to X^-1; in the
+     * fluid it is the commutator approximation, which also contains the
+     * convection of an Oseen block. Two inner CG solves per application.
      */
-    /// AMG settings of the pressure Laplacian of the Schur approximation
-    /// (shared by the matrix-based and the matrix-free solves).
-    TrilinosWrappers::PreconditionAMG::AdditionalData
-    pressure_laplace_amg_data();
 
     class BlockSchurPreconditioner : public Subscriptor
     {
@@ -62,9 +71,9 @@ namespace softsand
         const std::vector<std::vector<bool>>      &velocity_constant_modes,
         const bool                                 convection,
         const unsigned int                         amg_sweeps,
-        const std::string &velocity_smoother = "Chebyshev",
-        const bool   discrete_brinkman_schur = false,
-        const double inner_tolerance         = 1e-4);
+        const std::string           &velocity_smoother = "Chebyshev",
+        const SolverParameters::Schur schur = SolverParameters::Schur::mass,
+        const double                 inner_tolerance = 1e-4);
 
       void
       vmult(BlockVector &dst, const BlockVector &src) const;
@@ -76,11 +85,24 @@ namespace softsand
       TrilinosWrappers::PreconditionAMG          velocity_amg;
       TrilinosWrappers::PreconditionILU          pressure_mass_ilu;
       TrilinosWrappers::PreconditionAMG          pressure_laplace_amg;
+      const SolverParameters::Schur              schur;
       bool                                       use_laplace;
-      /// B diag(A)^-1 B^T with discrete_brinkman_schur (else empty).
+      /// X = B diag(A)^-1 B^T + C (discrete brinkman, least squares
+      /// commutator; else empty).
       TrilinosWrappers::SparseMatrix             discrete_brinkman;
+      /// diag(A)^-1 (least squares commutator).
+      TrilinosWrappers::MPI::Vector              inverse_velocity_diagonal;
+      /// Pressure rows without divergence entries (constrained): their
+      /// 1 / diagonal of the (1,1) block, else 0 (least squares commutator).
+      TrilinosWrappers::MPI::Vector              decoupled_pressure_inverse;
       const double                               inner_tolerance;
-      mutable TrilinosWrappers::MPI::Vector      tmp_u, tmp_p;
+      mutable TrilinosWrappers::MPI::Vector      tmp_u, tmp_u2, tmp_p, tmp_p2;
+
+      /// CG with AMG on X to the inner tolerance (an inexact solve that
+      /// stops at its bound still returns its last iterate: FGMRES).
+      void
+      solve_discrete_brinkman(TrilinosWrappers::MPI::Vector       &dst,
+                              const TrilinosWrappers::MPI::Vector &src) const;
     };
   } // namespace fluid
 } // namespace softsand

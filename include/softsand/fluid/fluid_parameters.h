@@ -77,6 +77,7 @@ namespace softsand
       {
         cahouet_chabard,
         discrete_brinkman,
+        least_squares_commutator,
         weighted_mass,
         mass
       };
@@ -97,6 +98,12 @@ namespace softsand
       /// schur = discrete brinkman: relative tolerance of the inner CG on
       /// B D^-1 B^T.
       double       schur_inner_tolerance    = 1e-4;
+      /// Keep the preconditioner of the last solve while the mesh and the
+      /// matrix sparsity are unchanged (coupling steps), rebuilt when a
+      /// solve needs more than 'rebuild factor' times the iterations of the
+      /// solve it was built for.
+      bool         reuse_preconditioner     = true;
+      double       preconditioner_rebuild_factor = 1.5;
       unsigned int velocity_amg_sweeps      = 2;
       /// Smoother of the velocity-block AMG (an ML smoother type).
       enum class AmgSmoother

@@ -20,6 +20,7 @@
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 
+#include <softsand/fluid/block_schur_preconditioner.h>
 #include <softsand/fluid/boundary_conditions.h>
 #include <softsand/fluid/fluid_parameters.h>
 #include <softsand/fluid/solid_field.h>
@@ -281,6 +282,8 @@ namespace softsand
                kind == Assembly::steady_stokes &&
                solver_parameters.schur !=
                  SolverParameters::Schur::discrete_brinkman &&
+               solver_parameters.schur !=
+                 SolverParameters::Schur::least_squares_commutator &&
                solver_parameters.grad_div == 0 &&
                solver_parameters.grad_div_cell_factor == 0 &&
                !boundary_conditions.has_pressure_regions();
@@ -434,6 +437,14 @@ namespace softsand
 
       BlockVector solution, old_solution, older_solution;
       BlockVector system_rhs;
+
+      /// The matrix-based preconditioner, kept over solves while the mesh
+      /// and sparsity stay (SolverParameters::reuse_preconditioner); the
+      /// kind of block it was built for and the iterations of its first
+      /// solve. Declared after the matrices it refers to.
+      std::unique_ptr<BlockSchurPreconditioner> preconditioner;
+      bool                                      preconditioner_convection = false;
+      unsigned int                              preconditioner_iterations = 0;
 
       const SolidField<dim>          *solid_field = nullptr;
       bool                             moving_solids = false;
