@@ -169,7 +169,7 @@ namespace softsand
                         "each.");
       prm.declare_entry(
         "schur complement",
-        "cahouet chabard",
+        "least squares commutator",
         Patterns::Selection(
           "cahouet chabard|discrete brinkman|least squares commutator|"
           "weighted mass|mass"),
@@ -188,12 +188,16 @@ namespace softsand
         "weighted mass = mass matrix weighted "
         "by 1/(mu + beta h^2); mass = 1/mu mass matrix (plain Stokes).");
       prm.declare_entry("schur inner tolerance",
-                        "1e-4",
+                        "1e-6",
                         Patterns::Double(1e-12, 0.5),
-                        "schur complement = discrete brinkman: relative "
-                        "tolerance of the inner CG on B D^-1 B^T "
-                        "(dimensionless). 1e-2 gave 7x more FGMRES "
-                        "iterations on a dense pack than 1e-4.");
+                        "schur complement = discrete brinkman or least "
+                        "squares commutator: relative tolerance of the "
+                        "inner CG on B D^-1 B^T (dimensionless). 1e-2 gave "
+                        "7x more FGMRES iterations on a dense pack than "
+                        "1e-4 (discrete brinkman); the commutator, which "
+                        "applies it twice, stalled at 1e-4 on a "
+                        "simple-cubic array and converges at 1e-6 "
+                        "(doc/solver_study.md).");
       prm.declare_entry(
         "reuse preconditioner",
         "true",
@@ -210,7 +214,7 @@ namespace softsand
         "solve needed more than this factor times the iterations of the "
         "solve it was built for (plus 5) (dimensionless).");
       prm.declare_entry("velocity amg sweeps",
-                        "2",
+                        "4",
                         Patterns::Integer(1, 10),
                         "linear solver = matrix based: smoother sweeps of the "
                         "velocity-block AMG.");
@@ -248,7 +252,7 @@ namespace softsand
         "(doc/validation.md). 0 = constant gamma.");
       prm.declare_entry(
         "linear solver",
-        "matrix free",
+        "matrix based",
         Patterns::Selection("matrix free|matrix based"),
         "matrix free: FGMRES on the matrix-free Q2-Q1 operator, velocity "
         "block preconditioned by one geometric multigrid V-cycle (Q2, then "

@@ -859,9 +859,9 @@ namespace softsand
                     if (!reservoir)
                       {
                         const double advect_i = convection ? rho * phi : 0.;
+                        // Newton: rho (u . grad) w, its diagonal part here.
                         const double zeroth =
-                          beta + temam +
-                          (newton ? advect_i * grad_w[ci][ci] : 0.);
+                          beta + temam + (newton ? rho * grad_w[ci][ci] : 0.);
                         for (const unsigned int j : dofs_of_component[ci])
                           {
                             double a = mu * (grad_i * shape_grad[j]) +
@@ -944,6 +944,47 @@ namespace softsand
 
 
     template <int dim>
+    void
+    PenalizedNavierStokes<dim>::build_preconditioner(const bool convection)
+    {
+      TimerOutput::Scope t(timer, "fluid: preconditioner setup");
+      preconditioner.reset();
+      // How much of the system the grains fix (their rows stay in a
+      // moving-solid sparsity): the memory that removing them would save.
+      unsigned int n_fixed = 0;
+      for (const auto i : owned_partitioning[0])
+        n_fixed += constraints.is_constrained(i);
+      pcout << "      preconditioner built: "
+            << Utilities::MPI::sum(n_fixed, mpi_communicator) << " of "
+            << owned_partitioning[0].size() << " velocity DoFs constrained (grains, walls, hanging)"
+            << std::endl;
+      std::vector<std::vector<bool>> constant_modes;
+      const FEValuesExtractors::Vector velocities(0);
+      DoFTools::extract_constant_modes(dof_handler,
+                                       fe.component_mask(velocities),
+                                       constant_modes);
+      preconditioner = std::make_unique<BlockSchurPreconditioner>(
+        system_matrix,
+        pressure_mass_matrix,
+        solver_parameters.schur ==
+            SolverParameters::Schur::cahouet_chabard ?
+          &pressure_laplace_matrix :
+          nullptr,
+        constant_modes,
+        convection,
+        solver_parameters.velocity_amg_sweeps,
+        solver_parameters.velocity_amg_smoother ==
+            SolverParameters::AmgSmoother::chebyshev ?
+          "Chebyshev" :
+          "symmetric Gauss-Seidel",
+        solver_parameters.schur,
+        solver_parameters.schur_inner_tolerance);
+      preconditioner_convection = convection;
+      preconditioner_iterations = 0;
+    }
+
+
+    template <int dim>
     unsigned int
     PenalizedNavierStokes<dim>::solve_linear(const bool convection)
     {
@@ -952,35 +993,11 @@ namespace softsand
       // A kept preconditioner (same mesh and sparsity, same kind of block)
       // preconditions the new matrix: FGMRES stays exact, and the
       // iteration count tells when to rebuild.
-      if (preconditioner == nullptr || !solver_parameters.reuse_preconditioner ||
-          preconditioner_convection != convection)
-        {
-          TimerOutput::Scope t(timer, "fluid: preconditioner setup");
-          preconditioner.reset();
-          std::vector<std::vector<bool>> constant_modes;
-          const FEValuesExtractors::Vector velocities(0);
-          DoFTools::extract_constant_modes(dof_handler,
-                                           fe.component_mask(velocities),
-                                           constant_modes);
-          preconditioner = std::make_unique<BlockSchurPreconditioner>(
-            system_matrix,
-            pressure_mass_matrix,
-            solver_parameters.schur ==
-                SolverParameters::Schur::cahouet_chabard ?
-              &pressure_laplace_matrix :
-              nullptr,
-            constant_modes,
-            convection,
-            solver_parameters.velocity_amg_sweeps,
-            solver_parameters.velocity_amg_smoother ==
-                SolverParameters::AmgSmoother::chebyshev ?
-              "Chebyshev" :
-              "symmetric Gauss-Seidel",
-            solver_parameters.schur,
-            solver_parameters.schur_inner_tolerance);
-          preconditioner_convection = convection;
-          preconditioner_iterations = 0;
-        }
+      const bool kept = preconditioner != nullptr &&
+                        solver_parameters.reuse_preconditioner &&
+                        preconditioner_convection == convection;
+      if (!kept)
+        build_preconditioner(convection);
 
       BlockVector x(owned_partitioning, mpi_communicator);
       x = solution; // start from the previous state: cheap re-solves
@@ -1026,6 +1043,14 @@ namespace softsand
       SolverFGMRES<BlockVector> solver(
         control, SolverFGMRES<BlockVector>::AdditionalData(
           solver_parameters.krylov_restart));
+      // A kept preconditioner gets the iterations after which it would be
+      // rebuilt anyway; if it fails, a new one gets the whole budget.
+      if (kept)
+        control.set_max_steps(std::min<unsigned int>(
+          solver_parameters.max_linear_iterations,
+          solver_parameters.preconditioner_rebuild_factor *
+              preconditioner_iterations +
+            5));
       try
         {
           if (rhs_norm > 0)
@@ -1033,8 +1058,26 @@ namespace softsand
         }
       catch (const SolverControl::NoConvergence &e)
         {
-          AssertThrow(false,
-                      ExcMessage(linear_solver_failure(e, control.tolerance())));
+          if (!kept)
+            AssertThrow(false,
+                        ExcMessage(
+                          linear_solver_failure(e, control.tolerance())));
+          pcout << "      kept preconditioner: no convergence in "
+                << e.last_step << " iterations, rebuilt" << std::endl;
+          build_preconditioner(convection);
+          control.set_max_steps(solver_parameters.max_linear_iterations);
+          x = solution;
+          constraints.set_zero(x);
+          try
+            {
+              solver.solve(system_matrix, x, system_rhs, *preconditioner);
+            }
+          catch (const SolverControl::NoConvergence &e)
+            {
+              AssertThrow(false,
+                          ExcMessage(
+                            linear_solver_failure(e, control.tolerance())));
+            }
         }
       // The first solve with a preconditioner sets its reference count;
       // one that needs clearly more asks for a new one next time.

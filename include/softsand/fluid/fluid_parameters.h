@@ -94,17 +94,17 @@ namespace softsand
       unsigned int max_linear_iterations    = 1000;
       /// Krylov vectors kept by FGMRES before it restarts.
       unsigned int krylov_restart           = 100;
-      Schur        schur                    = Schur::cahouet_chabard;
+      Schur        schur                    = Schur::least_squares_commutator;
       /// schur = discrete brinkman: relative tolerance of the inner CG on
       /// B D^-1 B^T.
-      double       schur_inner_tolerance    = 1e-4;
+      double       schur_inner_tolerance    = 1e-6;
       /// Keep the preconditioner of the last solve while the mesh and the
       /// matrix sparsity are unchanged (coupling steps), rebuilt when a
       /// solve needs more than 'rebuild factor' times the iterations of the
       /// solve it was built for.
       bool         reuse_preconditioner     = true;
       double       preconditioner_rebuild_factor = 1.5;
-      unsigned int velocity_amg_sweeps      = 2;
+      unsigned int velocity_amg_sweeps      = 4;
       /// Smoother of the velocity-block AMG (an ML smoother type).
       enum class AmgSmoother
       {
@@ -117,7 +117,7 @@ namespace softsand
       double grad_div = 0;
       /// Cell part of gamma: + factor rho |u| h (dimensionless factor).
       double grad_div_cell_factor = 0;
-      LinearSolver linear_solver            = LinearSolver::matrix_free;
+      LinearSolver linear_solver            = LinearSolver::matrix_based;
       /// Geometric multigrid of the matrix-free velocity block.
       unsigned int smoother_degree = 4;
       double       smoothing_range = 20;

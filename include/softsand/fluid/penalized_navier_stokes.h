@@ -363,6 +363,9 @@ namespace softsand
       pin_undetermined_solid_pressures();
       unsigned int
       solve_linear(const bool convection);
+      /// (Re)build #preconditioner for the assembled system.
+      void
+      build_preconditioner(const bool convection);
       /// The pressure-Laplacian coefficient 1/beta of the Schur
       /// approximation is capped where beta -> 0 (steady pure fluid) by
       /// this viscous scale mu / L^2 of the domain (both solve paths).
