@@ -209,7 +209,7 @@ def main():
                 setup_calls, setup = r['setup']
                 # Matrix based: the setup is timed inside the solve section.
                 solve = r['solve'] - setup if spec != 'mf' else r['solve']
-                first = setup + solve if a.steps == 1 else None
+                per_step = None
                 if a.steps > 1:
                     # Per-step wall from the statistics' wall_time column.
                     walls = [row['wall_time'] for row in r['rows']]
@@ -218,9 +218,9 @@ def main():
                     its = [int(row['linear_iterations']) for row in r['rows']]
                     per_step = ', '.join('%d its %.0f s' % (i, w)
                                          for i, w in zip(its, steps))
-                    first = (setup + solve) / max(len(its), 1)
-                else:
-                    per_step = None
+                # DoFs per second and core over all the solves of the run.
+                throughput = (r['dofs'] * len(r['rows']) /
+                              ((setup + solve) * n))
                 error = ('%.2e' % (abs(r['qoi'] - reference) / abs(reference))
                          if reference else '')
                 print('| %s | %s | %d | %d | %s | %.1f (%d) | %.1f | %.0f | '
@@ -228,10 +228,7 @@ def main():
                           problem, spec, n, r['dofs'],
                           per_step or r['iterations'], setup, setup_calls,
                           solve, r['wall'], r['peak_kB'] / 1024.,
-                          r['sum_kB'] * 1024. / r['dofs'],
-                          r['dofs'] / ((setup + solve) / max(1, a.steps) * n)
-                          if a.steps == 1 else
-                          r['dofs'] * len(r['rows']) / ((setup + solve) * n),
+                          r['sum_kB'] * 1024. / r['dofs'], throughput,
                           r['qoi'], error), flush=True)
 
 

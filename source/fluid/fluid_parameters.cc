@@ -210,9 +210,10 @@ namespace softsand
         "preconditioner rebuild factor",
         "1.5",
         Patterns::Double(1),
-        "reuse preconditioner = true: rebuild it for the next solve when a "
-        "solve needed more than this factor times the iterations of the "
-        "solve it was built for (plus 5) (dimensionless).");
+        "reuse preconditioner = true: a solve with a kept preconditioner "
+        "that needs more than this factor times the iterations of the "
+        "solve it was built for (plus 5) is stopped there and redone from "
+        "the same start with a new preconditioner (dimensionless).");
       prm.declare_entry("velocity amg sweeps",
                         "4",
                         Patterns::Integer(1, 10),

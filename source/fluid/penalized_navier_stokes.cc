@@ -956,7 +956,8 @@ namespace softsand
         n_fixed += constraints.is_constrained(i);
       pcout << "      preconditioner built: "
             << Utilities::MPI::sum(n_fixed, mpi_communicator) << " of "
-            << owned_partitioning[0].size() << " velocity DoFs constrained (grains, walls, hanging)"
+            << owned_partitioning[0].size()
+            << " velocity DoFs constrained (grains, walls, hanging)"
             << std::endl;
       std::vector<std::vector<bool>> constant_modes;
       const FEValuesExtractors::Vector velocities(0);
@@ -1043,51 +1044,38 @@ namespace softsand
       SolverFGMRES<BlockVector> solver(
         control, SolverFGMRES<BlockVector>::AdditionalData(
           solver_parameters.krylov_restart));
-      // A kept preconditioner gets the iterations after which it would be
-      // rebuilt anyway; if it fails, a new one gets the whole budget.
+      // A kept preconditioner may take 'rebuild factor' times the
+      // iterations of its first solve (+ 5); where that does not suffice,
+      // a new one solves again from the same start with the whole budget.
       if (kept)
         control.set_max_steps(std::min<unsigned int>(
           solver_parameters.max_linear_iterations,
           solver_parameters.preconditioner_rebuild_factor *
               preconditioner_iterations +
             5));
-      try
-        {
-          if (rhs_norm > 0)
-            solver.solve(system_matrix, x, system_rhs, *preconditioner);
-        }
-      catch (const SolverControl::NoConvergence &e)
-        {
-          if (!kept)
-            AssertThrow(false,
+      const BlockVector start = x;
+      for (bool may_rebuild = kept;; may_rebuild = false)
+        try
+          {
+            if (rhs_norm > 0)
+              solver.solve(system_matrix, x, system_rhs, *preconditioner);
+            break;
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            AssertThrow(may_rebuild,
                         ExcMessage(
                           linear_solver_failure(e, control.tolerance())));
-          pcout << "      kept preconditioner: no convergence in "
-                << e.last_step << " iterations, rebuilt" << std::endl;
-          build_preconditioner(convection);
-          control.set_max_steps(solver_parameters.max_linear_iterations);
-          x = solution;
-          constraints.set_zero(x);
-          try
-            {
-              solver.solve(system_matrix, x, system_rhs, *preconditioner);
-            }
-          catch (const SolverControl::NoConvergence &e)
-            {
-              AssertThrow(false,
-                          ExcMessage(
-                            linear_solver_failure(e, control.tolerance())));
-            }
-        }
-      // The first solve with a preconditioner sets its reference count;
-      // one that needs clearly more asks for a new one next time.
+            pcout << "      kept preconditioner: no convergence in "
+                  << e.last_step << " iterations, rebuilt" << std::endl;
+            build_preconditioner(convection);
+            control.set_max_steps(solver_parameters.max_linear_iterations);
+            x = start;
+          }
       const unsigned int iterations = rhs_norm > 0 ? control.last_step() : 0;
+      // The first solve with a preconditioner sets its reference count.
       if (preconditioner_iterations == 0)
         preconditioner_iterations = std::max(iterations, 1u);
-      else if (iterations > solver_parameters.preconditioner_rebuild_factor *
-                                preconditioner_iterations +
-                              5)
-        preconditioner.reset();
       // A zero right-hand side (fluid and grains at rest) needs no solve.
       return accept_linear_solution(x, iterations);
     }

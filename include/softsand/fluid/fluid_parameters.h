@@ -95,13 +95,13 @@ namespace softsand
       /// Krylov vectors kept by FGMRES before it restarts.
       unsigned int krylov_restart           = 100;
       Schur        schur                    = Schur::least_squares_commutator;
-      /// schur = discrete brinkman: relative tolerance of the inner CG on
-      /// B D^-1 B^T.
+      /// schur = discrete brinkman or least squares commutator: relative
+      /// tolerance of the inner CG on B D^-1 B^T.
       double       schur_inner_tolerance    = 1e-6;
       /// Keep the preconditioner of the last solve while the mesh and the
-      /// matrix sparsity are unchanged (coupling steps), rebuilt when a
-      /// solve needs more than 'rebuild factor' times the iterations of the
-      /// solve it was built for.
+      /// matrix sparsity are unchanged (coupling steps); a solve that would
+      /// need more than 'rebuild factor' times the iterations of the solve
+      /// it was built for (+ 5) is stopped there and redone with a new one.
       bool         reuse_preconditioner     = true;
       double       preconditioner_rebuild_factor = 1.5;
       unsigned int velocity_amg_sweeps      = 4;
