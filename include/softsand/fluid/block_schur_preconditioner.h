@@ -73,7 +73,7 @@ namespace softsand
         const unsigned int                         amg_sweeps,
         const std::string           &velocity_smoother = "Chebyshev",
         const SolverParameters::Schur schur = SolverParameters::Schur::mass,
-        const double                 inner_tolerance = 1e-4);
+        const double                 inner_tolerance = 1e-6);
 
       void
       vmult(BlockVector &dst, const BlockVector &src) const;
