@@ -26,6 +26,8 @@ Candidates (--candidates, comma separated):
          regions only)
   db     matrix based, discrete Brinkman: mu M^-1 + (B D^-1 B^T + C)^-1
   lsc    matrix based, least-squares commutator X^-1 B D^-1 A D^-1 B^T X^-1
+  mflsc  matrix free (geometric multigrid for A), least-squares commutator
+         with A and B applied matrix free, only X assembled
   NAME:entry=value;entry=value   your own (entries as in the .prm)
 Each candidate may take '+entry=value' additions after it, e.g.
 'lsc+fluid solver/velocity amg sweeps=4'.
@@ -54,6 +56,8 @@ CANDIDATES = {
            ('fluid solver/schur complement', 'discrete brinkman')],
     'lsc': [('fluid solver/linear solver', 'matrix based'),
             ('fluid solver/schur complement', 'least squares commutator')],
+    'mflsc': [('fluid solver/linear solver', 'matrix free'),
+              ('fluid solver/schur complement', 'least squares commutator')],
 }
 
 
@@ -208,7 +212,9 @@ def main():
                     continue
                 setup_calls, setup = r['setup']
                 # Matrix based: the setup is timed inside the solve section.
-                solve = r['solve'] - setup if spec != 'mf' else r['solve']
+                matrix_free = ('fluid solver/linear solver', 'matrix free') \
+                    in candidate_overrides(spec)
+                solve = r['solve'] if matrix_free else r['solve'] - setup
                 per_step = None
                 if a.steps > 1:
                     # Per-step wall from the statistics' wall_time column.

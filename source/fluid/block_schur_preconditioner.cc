@@ -39,59 +39,79 @@ namespace softsand
         system_matrix.block(1, 0).mmult(product,
                                         system_matrix.block(0, 1),
                                         inverse);
-        const auto &c = system_matrix.block(1, 1);
-        decoupled_inverse.reinit(c.locally_owned_range_indices(),
-                                 c.get_mpi_communicator());
-        const auto range = product.local_range();
-        for (auto i = range.first; i < range.second; ++i)
-          if (product.diag_element(i) == 0 && c.diag_element(i) != 0)
-            decoupled_inverse(i) = 1. / c.diag_element(i);
-        decoupled_inverse.compress(VectorOperation::insert);
-        // The pressure block is -C (rigid-node smoothing) on coupled rows
-        // and the positive constraint diagonal on constrained rows, which
-        // have empty B rows: subtract it, then make the constrained
-        // diagonals positive again and give zero diagonals the mean, so
-        // that AMG and CG see a regular positive matrix (these rows are
-        // overwritten by the constraints).
-        {
-          Epetra_CrsMatrix *sum  = nullptr;
-          const int         ierr = EpetraExt::MatrixMatrix::Add(
-            product.trilinos_matrix(),
-            false,
-            1.,
-            c.trilinos_matrix(),
-            false,
-            -1.,
-            sum);
-          AssertThrow(ierr == 0 && sum != nullptr,
-                      ExcMessage("EpetraExt could not add the pressure block "
-                                 "to B D^-1 B^T."));
-          sum->FillComplete(product.trilinos_matrix().DomainMap(),
-                            product.trilinos_matrix().RangeMap());
-          discrete_brinkman.reinit(*sum);
-          delete sum;
-        }
-        double sum = 0, count = 0;
-        for (auto i = range.first; i < range.second; ++i)
-          if (discrete_brinkman.diag_element(i) > 0)
-            {
-              sum += discrete_brinkman.diag_element(i);
-              ++count;
-            }
-        const MPI_Comm comm = discrete_brinkman.get_mpi_communicator();
-        const double   mean = Utilities::MPI::sum(sum, comm) /
-                            std::max(1., Utilities::MPI::sum(count, comm));
-        for (auto i = range.first; i < range.second; ++i)
-          {
-            const double d = discrete_brinkman.diag_element(i);
-            if (d < 0)
-              discrete_brinkman.set(i, i, -d);
-            else if (!(d > 0))
-              discrete_brinkman.set(i, i, mean);
-          }
-        discrete_brinkman.compress(VectorOperation::insert);
+        discrete_brinkman_from_product(product,
+                                       system_matrix.block(1, 1),
+                                       discrete_brinkman,
+                                       decoupled_inverse);
       }
     } // namespace
+
+
+    void
+    make_pressure_diagonal_regular(TrilinosWrappers::SparseMatrix &x)
+    {
+      const auto range = x.local_range();
+      double     sum = 0, count = 0;
+      for (auto i = range.first; i < range.second; ++i)
+        if (x.diag_element(i) > 0)
+          {
+            sum += x.diag_element(i);
+            ++count;
+          }
+      const MPI_Comm comm = x.get_mpi_communicator();
+      const double   mean = Utilities::MPI::sum(sum, comm) /
+                          std::max(1., Utilities::MPI::sum(count, comm));
+      for (auto i = range.first; i < range.second; ++i)
+        {
+          const double d = x.diag_element(i);
+          if (d < 0)
+            x.set(i, i, -d);
+          else if (!(d > 0))
+            x.set(i, i, mean);
+        }
+      x.compress(VectorOperation::insert);
+    }
+
+
+    void
+    discrete_brinkman_from_product(const TrilinosWrappers::SparseMatrix &product,
+                                   const TrilinosWrappers::SparseMatrix &c,
+                                   TrilinosWrappers::SparseMatrix       &x,
+                                   TrilinosWrappers::MPI::Vector &decoupled_inverse)
+    {
+      decoupled_inverse.reinit(c.locally_owned_range_indices(),
+                               c.get_mpi_communicator());
+      const auto range = product.local_range();
+      for (auto i = range.first; i < range.second; ++i)
+        if (product.diag_element(i) == 0 && c.diag_element(i) != 0)
+          decoupled_inverse(i) = 1. / c.diag_element(i);
+      decoupled_inverse.compress(VectorOperation::insert);
+      // The pressure block is -C (rigid-node smoothing) on coupled rows
+      // and the positive constraint diagonal on constrained rows, which
+      // have empty B rows: subtract it, then make the constrained
+      // diagonals positive again and give zero diagonals the mean, so
+      // that AMG and CG see a regular positive matrix (these rows are
+      // overwritten by the constraints).
+      {
+        Epetra_CrsMatrix *sum  = nullptr;
+        const int         ierr = EpetraExt::MatrixMatrix::Add(
+          product.trilinos_matrix(),
+          false,
+          1.,
+          c.trilinos_matrix(),
+          false,
+          -1.,
+          sum);
+        AssertThrow(ierr == 0 && sum != nullptr,
+                    ExcMessage("EpetraExt could not add the pressure block "
+                               "to B D^-1 B^T."));
+        sum->FillComplete(product.trilinos_matrix().DomainMap(),
+                          product.trilinos_matrix().RangeMap());
+        x.reinit(*sum);
+        delete sum;
+      }
+      make_pressure_diagonal_regular(x);
+    }
 
 
     TrilinosWrappers::PreconditionAMG::AdditionalData

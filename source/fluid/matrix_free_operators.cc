@@ -193,9 +193,11 @@ namespace softsand
       std::shared_ptr<const MatrixFree<dim, double>>          data,
       std::shared_ptr<const VelocityOperator<dim, 2, double>> velocity_block,
       const AffineConstraints<double> &velocity_constraints,
-      const AffineConstraints<double> &pressure_constraints)
+      const AffineConstraints<double> &pressure_constraints,
+      const TrilinosWrappers::SparseMatrix *pressure_block)
     {
-      matrix_free = data;
+      matrix_free          = data;
+      this->pressure_block = pressure_block;
       velocity    = velocity_block;
       constrained_velocity =
         constrained_local_rows(*data->get_vector_partitioner(0),
@@ -274,6 +276,13 @@ namespace softsand
     {
       matrix_free->cell_loop(
         &StokesOperator::local_apply<false>, this, dst, src, true);
+      if (pressure_block != nullptr)
+        {
+          // Constrained columns are not in the assembled block.
+          pressure_tmp.reinit(dst.block(1), true);
+          pressure_block->vmult(pressure_tmp, src.block(1));
+          dst.block(1) += pressure_tmp;
+        }
       for (const unsigned int i : constrained_velocity)
         dst.block(0).local_element(i) = src.block(0).local_element(i);
       for (const unsigned int i : constrained_pressure)
@@ -323,6 +332,41 @@ namespace softsand
     {
       matrix_free->cell_loop(
         &StokesOperator::local_gradient, this, dst, pressure, true);
+    }
+
+
+    template <int dim>
+    void
+    StokesOperator<dim>::local_divergence(
+      const MatrixFree<dim, double>               &data,
+      VectorType                                  &dst,
+      const VectorType                            &src,
+      const std::pair<unsigned int, unsigned int> &range) const
+    {
+      typename VelocityOperator<dim, 2, double>::Evaluation u(data,
+                                                              range,
+                                                              0,
+                                                              0);
+      FEEvaluation<dim, 1, 3, 1, double> p(data, range, 1, 0);
+      for (unsigned int cell = range.first; cell < range.second; ++cell)
+        {
+          u.reinit(cell);
+          p.reinit(cell);
+          u.gather_evaluate(src, EvaluationFlags::gradients);
+          for (const unsigned int q : p.quadrature_point_indices())
+            p.submit_value(-u.get_divergence(q), q);
+          p.integrate_scatter(EvaluationFlags::values, dst);
+        }
+    }
+
+
+    template <int dim>
+    void
+    StokesOperator<dim>::apply_divergence(VectorType       &dst,
+                                          const VectorType &velocity) const
+    {
+      matrix_free->cell_loop(
+        &StokesOperator::local_divergence, this, dst, velocity, true);
     }
 
 

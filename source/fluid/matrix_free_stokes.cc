@@ -1,8 +1,10 @@
 // The matrix-free path of PenalizedNavierStokes: FGMRES on the Q2-Q1
 // operator applied cell by cell (sum factorization), the velocity block
 // preconditioned by one geometric multigrid V-cycle, the Schur complement by
-// the same Cahouet-Chabard approximation as the matrix-based path (its two
-// Q1 pressure matrices are small, so they stay assembled).
+// the same approximations as the matrix-based path: the least-squares
+// commutator X^-1 (B D^-1 A D^-1 B^T) X^-1 with A and B applied matrix free
+// and only X = B D^-1 B^T assembled (Q1, about a 25th of the unknowns), or
+// Cahouet-Chabard (two assembled Q1 pressure matrices).
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -14,6 +16,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
@@ -46,6 +49,14 @@ namespace softsand
       TrilinosWrappers::SparseMatrix                     pressure_laplace;
       TrilinosWrappers::PreconditionILU                  pressure_mass_ilu;
       TrilinosWrappers::PreconditionAMG                  pressure_laplace_amg;
+      /// Least-squares commutator: X = B D^-1 B^T, its AMG, D^-1.
+      TrilinosWrappers::SparseMatrix                     discrete_brinkman;
+      TrilinosWrappers::PreconditionAMG                  discrete_brinkman_amg;
+      LinearAlgebra::distributed::Vector<double>         inverse_diagonal;
+      /// Rigid-node pressure smoothing: the pressure block -C, and
+      /// 1 / (-C_ii) on rows that B does not reach (else 0).
+      TrilinosWrappers::SparseMatrix                     pressure_block;
+      LinearAlgebra::distributed::Vector<double>         decoupled_inverse;
     };
 
 
@@ -53,8 +64,11 @@ namespace softsand
     {
       /**
        * Block upper-triangular preconditioner of the matrix-free path:
-       * p = -(M_p(1/mu)^-1 + L_p(1/beta)^-1) r_p, then one multigrid V-cycle
-       * for u from r_u - B^T p.
+       * p = -S~^-1 r_p, then one multigrid V-cycle for u from r_u - B^T p.
+       * S~^-1 is either M_p(1/mu)^-1 + L_p(1/beta)^-1 (Cahouet-Chabard) or
+       * the least-squares commutator X^-1 (B D^-1 A D^-1 B^T) X^-1 (see
+       * BlockSchurPreconditioner); constrained pressure rows are identity
+       * rows of the operator, so their block is the identity.
        */
       template <int dim>
       class MatrixFreeBlockPreconditioner
@@ -70,21 +84,48 @@ namespace softsand
           const TrilinosWrappers::PreconditionAMG *pressure_laplace)
             : stokes(stokes)
             , multigrid(multigrid)
-            , pressure_mass(pressure_mass)
+            , pressure_mass(&pressure_mass)
             , pressure_laplace(pressure_laplace)
+        {}
+
+        /// The least-squares commutator.
+        MatrixFreeBlockPreconditioner(
+          const StokesOperator<dim>                   &stokes,
+          const VelocityMultigrid<dim>                &multigrid,
+          const VelocityOperator<dim, 2, double>      &velocity,
+          const TrilinosWrappers::SparseMatrix        &discrete_brinkman,
+          const TrilinosWrappers::PreconditionAMG     &discrete_brinkman_amg,
+          const VectorType                            &inverse_diagonal,
+          const VectorType                            &decoupled_inverse,
+          const std::vector<unsigned int>             &constrained_pressure,
+          const double                                 inner_tolerance)
+            : stokes(stokes)
+            , multigrid(multigrid)
+            , velocity(&velocity)
+            , discrete_brinkman(&discrete_brinkman)
+            , discrete_brinkman_amg(&discrete_brinkman_amg)
+            , inverse_diagonal(&inverse_diagonal)
+            , decoupled_inverse(&decoupled_inverse)
+            , constrained_pressure(&constrained_pressure)
+            , inner_tolerance(inner_tolerance)
         {}
 
         void
         vmult(BlockVectorType &dst, const BlockVectorType &src) const
         {
-          pressure_mass.vmult(dst.block(1), src.block(1));
-          if (pressure_laplace != nullptr)
+          if (discrete_brinkman != nullptr)
+            apply_commutator(dst.block(1), src.block(1));
+          else
             {
-              tmp_p.reinit(src.block(1), true);
-              pressure_laplace->vmult(tmp_p, src.block(1));
-              dst.block(1) += tmp_p;
+              pressure_mass->vmult(dst.block(1), src.block(1));
+              if (pressure_laplace != nullptr)
+                {
+                  tmp_p.reinit(src.block(1), true);
+                  pressure_laplace->vmult(tmp_p, src.block(1));
+                  dst.block(1) += tmp_p;
+                }
+              dst.block(1) *= -1.;
             }
-          dst.block(1) *= -1.;
           tmp_u.reinit(src.block(0), true);
           stokes.apply_gradient(tmp_u, dst.block(1));
           tmp_u.sadd(-1., 1., src.block(0));
@@ -94,9 +135,58 @@ namespace softsand
       private:
         const StokesOperator<dim>               &stokes;
         const VelocityMultigrid<dim>            &multigrid;
-        const TrilinosWrappers::PreconditionILU &pressure_mass;
-        const TrilinosWrappers::PreconditionAMG *pressure_laplace;
-        mutable VectorType                       tmp_u, tmp_p;
+        const TrilinosWrappers::PreconditionILU *pressure_mass    = nullptr;
+        const TrilinosWrappers::PreconditionAMG *pressure_laplace = nullptr;
+        const VelocityOperator<dim, 2, double>  *velocity         = nullptr;
+        const TrilinosWrappers::SparseMatrix    *discrete_brinkman = nullptr;
+        const TrilinosWrappers::PreconditionAMG *discrete_brinkman_amg =
+          nullptr;
+        const VectorType                        *inverse_diagonal     = nullptr;
+        const VectorType                        *decoupled_inverse    = nullptr;
+        const std::vector<unsigned int>         *constrained_pressure = nullptr;
+        const double                             inner_tolerance      = 0;
+        mutable VectorType                       tmp_u, tmp_u2, tmp_p, tmp_p2;
+
+        /// dst = -X^-1 (B D^-1 A D^-1 B^T) X^-1 src on coupled rows.
+        void
+        apply_commutator(VectorType &dst, const VectorType &src) const
+        {
+          tmp_p.reinit(src, true);
+          tmp_p2.reinit(src, true);
+          tmp_u.reinit(*inverse_diagonal, true);
+          tmp_u2.reinit(*inverse_diagonal, true);
+          solve_discrete_brinkman(tmp_p, src);
+          stokes.apply_gradient(tmp_u, tmp_p);
+          tmp_u.scale(*inverse_diagonal);
+          velocity->vmult(tmp_u2, tmp_u);
+          tmp_u2.scale(*inverse_diagonal);
+          stokes.apply_divergence(tmp_p2, tmp_u2);
+          solve_discrete_brinkman(dst, tmp_p2);
+          dst *= -1.;
+          // Rows that only the smoothing couples: their diagonal, exactly.
+          if (decoupled_inverse->size() > 0)
+            for (unsigned int i = 0; i < dst.locally_owned_size(); ++i)
+              dst.local_element(i) += decoupled_inverse->local_element(i) *
+                                      src.local_element(i);
+          for (const unsigned int i : *constrained_pressure)
+            dst.local_element(i) = src.local_element(i);
+        }
+
+        /// CG with AMG on X to the inner tolerance; an inexact solve that
+        /// stops at its bound still returns its last iterate (FGMRES).
+        void
+        solve_discrete_brinkman(VectorType &dst, const VectorType &src) const
+        {
+          ReductionControl   control(200, 1e-300, inner_tolerance, false, false);
+          SolverCG<VectorType> cg(control);
+          dst = 0;
+          try
+            {
+              cg.solve(*discrete_brinkman, dst, src, *discrete_brinkman_amg);
+            }
+          catch (const SolverControl::NoConvergence &)
+            {}
+        }
       };
     } // namespace
 
@@ -180,8 +270,13 @@ namespace softsand
       const types::global_dof_index n_u   = dof_handler_velocity.n_dofs();
       const SolverParameters::Schur schur = solver_parameters.schur;
       const bool laplace = (schur == SolverParameters::Schur::cahouet_chabard);
+      const bool commutator =
+        (schur == SolverParameters::Schur::least_squares_commutator);
+      const bool smooth = smooth_solid_pressure();
 
       BlockVectorType rhs, lifting, delta;
+      // Least-squares commutator: B^T, released once X is formed.
+      TrilinosWrappers::SparseMatrix gradient;
       {
         TimerOutput::Scope t(timer, "fluid: assemble");
 
@@ -233,14 +328,74 @@ namespace softsand
         data.stokes.reinit(data.matrix_free,
                            data.velocity_operator,
                            data.velocity_constraints,
-                           data.pressure_constraints);
+                           data.pressure_constraints,
+                           smooth ? &data.pressure_block : nullptr);
         data.stokes.initialize_dof_vector(rhs);
         data.stokes.initialize_dof_vector(lifting);
         data.stokes.initialize_dof_vector(delta);
 
-        // Pressure blocks of the Schur approximation (Q1, small).
-        for (TrilinosWrappers::SparseMatrix *matrix :
-             {&data.pressure_mass, &data.pressure_laplace})
+        // Pressure blocks of the Schur approximation (Q1, small), or the
+        // gradient B^T whose product gives X (released once X is formed).
+        data.pressure_mass.clear();
+        data.pressure_laplace.clear();
+        data.discrete_brinkman.clear();
+        data.pressure_block.clear();
+        // The smoothing's lifting: the pressure constraints with their
+        // values (pressure regions).
+        AffineConstraints<double> pressure_lifting_constraints;
+        if (smooth)
+          {
+            pressure_lifting_constraints.reinit(relevant_partitioning[1]);
+            for (const auto &line : constraints.get_lines())
+              if (line.index >= n_u)
+                {
+                  pressure_lifting_constraints.add_line(line.index - n_u);
+                  for (const auto &[column, weight] : line.entries)
+                    pressure_lifting_constraints.add_entry(line.index - n_u,
+                                                           column - n_u,
+                                                           weight);
+                  pressure_lifting_constraints.set_inhomogeneity(
+                    line.index - n_u, line.inhomogeneity);
+                }
+            pressure_lifting_constraints.close();
+            TrilinosWrappers::SparsityPattern sparsity(owned_partitioning[1],
+                                                       owned_partitioning[1],
+                                                       relevant_partitioning[1],
+                                                       mpi_communicator);
+            DoFTools::make_sparsity_pattern(dof_handler_pressure,
+                                            sparsity,
+                                            data.pressure_constraints,
+                                            false);
+            sparsity.compress();
+            data.pressure_block.reinit(sparsity);
+          }
+        if (commutator)
+          {
+            TrilinosWrappers::SparsityPattern sparsity(owned_partitioning[0],
+                                                       owned_partitioning[1],
+                                                       relevant_partitioning[0],
+                                                       mpi_communicator);
+            std::vector<types::global_dof_index> u(fe_velocity.n_dofs_per_cell()),
+              p(fe_pressure.n_dofs_per_cell());
+            for (const auto &cell : dof_handler_velocity.active_cell_iterators())
+              if (cell->is_locally_owned())
+                {
+                  cell->get_dof_indices(u);
+                  typename DoFHandler<dim>::active_cell_iterator(
+                    &triangulation,
+                    cell->level(),
+                    cell->index(),
+                    &dof_handler_pressure)
+                    ->get_dof_indices(p);
+                  data.velocity_constraints.add_entries_local_to_global(
+                    u, data.pressure_constraints, p, sparsity, false);
+                }
+            sparsity.compress();
+            gradient.reinit(sparsity);
+          }
+        else
+          for (TrilinosWrappers::SparseMatrix *matrix :
+               {&data.pressure_mass, &data.pressure_laplace})
           {
             TrilinosWrappers::SparsityPattern sparsity(owned_partitioning[1],
                                                        owned_partitioning[1],
@@ -267,6 +422,10 @@ namespace softsand
                                       update_values | update_gradients |
                                         update_quadrature_points |
                                         update_JxW_values);
+        FEValues<dim>                    velocity_values(data.mapping,
+                                      fe_velocity,
+                                      quadrature,
+                                      update_gradients);
         FEFaceValues<dim>                velocity_face_values(data.mapping,
                                                fe_velocity,
                                                face_quadrature,
@@ -282,7 +441,9 @@ namespace softsand
         const unsigned int n_p_dofs = fe_pressure.n_dofs_per_cell();
         const unsigned int n_u_dofs = fe_velocity.n_dofs_per_cell();
         FullMatrix<double> local_mass(n_p_dofs, n_p_dofs),
-          local_laplace(n_p_dofs, n_p_dofs);
+          local_laplace(n_p_dofs, n_p_dofs), local_gradient(n_u_dofs, n_p_dofs),
+          local_smoothing(n_p_dofs, n_p_dofs);
+        Vector<double> local_pressure_rhs(n_p_dofs);
         Vector<double>                       local_face_rhs(n_u_dofs);
         std::vector<types::global_dof_index> u_dofs(n_u_dofs), p_dofs(n_p_dofs);
         std::vector<double>                  void_fraction(n_q, 1.);
@@ -292,6 +453,9 @@ namespace softsand
 
         const unsigned int n_batches = matrix_free.n_cell_batches();
         data.coefficients->reaction.reinit(n_batches, n_q);
+        if (boundary_conditions.has_pressure_regions())
+          data.coefficients->viscosity_scale.resize(
+            n_batches, VectorizedArray<double>(1.));
         typename VelocityOperator<dim, 2, double>::Evaluation  phi(matrix_free,
                                                                   0,
                                                                   0);
@@ -320,25 +484,93 @@ namespace softsand
                 // As assemble(): with rigid nodes the Schur mass is scaled by
                 // the cell's free velocity fraction.
                 double free_fraction = 1;
+                const double h = cell_p->diameter() / std::sqrt(double(dim));
+                // and the rigid-node pressure smoothing of assemble().
+                double solid_smoothing = 0;
                 if (!rigid_dof_grain.empty())
                   {
-                    unsigned int n_rigid = 0;
+                    unsigned int n_rigid = 0, n_fixed = 0;
                     for (const auto i : u_dofs)
-                      n_rigid += rigid_dof_grain.count(i);
+                      {
+                        n_rigid += rigid_dof_grain.count(i);
+                        if (smooth)
+                          n_fixed += is_fixed_velocity(i);
+                      }
                     free_fraction =
                       std::max(1e-4,
                                std::pow(1. - double(n_rigid) / n_u_dofs, 4));
+                    if (smooth && n_rigid > 0)
+                      solid_smoothing =
+                        fluid_parameters.rigid_node_pressure_smoothing * h *
+                        h / mu * std::pow(double(n_fixed) / n_u_dofs, 4);
                   }
-                const double h = cell_p->diameter() / std::sqrt(double(dim));
+                if (solid_smoothing > 0)
+                  {
+                    local_smoothing    = 0;
+                    local_pressure_rhs = 0;
+                    for (unsigned int q = 0; q < n_q; ++q)
+                      for (unsigned int i = 0; i < n_p_dofs; ++i)
+                        for (unsigned int j = 0; j < n_p_dofs; ++j)
+                          local_smoothing(i, j) -=
+                            solid_smoothing *
+                            (pressure_values.shape_grad(i, q) *
+                             pressure_values.shape_grad(j, q)) *
+                            pressure_values.JxW(q);
+                    pressure_lifting_constraints.distribute_local_to_global(
+                      local_smoothing,
+                      local_pressure_rhs,
+                      p_dofs,
+                      data.pressure_block,
+                      rhs.block(1),
+                      true);
+                  }
+                // A pressure region (reservoir) carries only -(p, div v), as
+                // in assemble().
+                const bool reservoir =
+                  boundary_conditions.has_pressure_regions() &&
+                  boundary_conditions.pressure_region(cell_p->center()) !=
+                    nullptr;
+                if (reservoir)
+                  data.coefficients->viscosity_scale[batch][lane] = 0.;
+
+                if (commutator)
+                  {
+                    // B^T: -(p, div v).
+                    velocity_values.reinit(cell_u);
+                    local_gradient = 0;
+                    for (unsigned int q = 0; q < n_q; ++q)
+                      {
+                        const double JxW = pressure_values.JxW(q);
+                        for (unsigned int i = 0; i < n_u_dofs; ++i)
+                          {
+                            const double div =
+                              velocity_values[velocities].divergence(i, q) *
+                              JxW;
+                            for (unsigned int j = 0; j < n_p_dofs; ++j)
+                              local_gradient(i, j) -=
+                                div * pressure_values.shape_value(j, q);
+                          }
+                      }
+                    data.velocity_constraints.distribute_local_to_global(
+                      local_gradient,
+                      u_dofs,
+                      data.pressure_constraints,
+                      p_dofs,
+                      gradient);
+                  }
 
                 local_mass    = 0;
                 local_laplace = 0;
                 for (unsigned int q = 0; q < n_q; ++q)
                   {
                     const double beta =
-                      brinkman_coefficient(void_fraction[q], dt);
+                      reservoir ? 0. :
+                                  brinkman_coefficient(void_fraction[q], dt);
                     data.coefficients->reaction(batch, q)[lane] = beta;
-                    body_force->vector_value(points[q], force_value);
+                    if (reservoir)
+                      force_value = 0;
+                    else
+                      body_force->vector_value(points[q], force_value);
                     for (unsigned int d = 0; d < dim; ++d)
                       rhs_values[q][d][lane] =
                         force_value[d] + beta * solid_velocity[q][d];
@@ -399,8 +631,9 @@ namespace softsand
                                   pressure_face_values.JxW(q);
                         }
                     }
-                data.pressure_constraints.distribute_local_to_global(
-                  local_mass, p_dofs, data.pressure_mass);
+                if (!commutator)
+                  data.pressure_constraints.distribute_local_to_global(
+                    local_mass, p_dofs, data.pressure_mass);
                 if (laplace)
                   data.pressure_constraints.distribute_local_to_global(
                     local_laplace, p_dofs, data.pressure_laplace);
@@ -411,15 +644,27 @@ namespace softsand
             phi.integrate_scatter(EvaluationFlags::values, rhs.block(0));
           }
         rhs.compress(VectorOperation::add);
-        data.pressure_mass.compress(VectorOperation::add);
-        data.pressure_laplace.compress(VectorOperation::add);
+        if (smooth)
+          data.pressure_block.compress(VectorOperation::add);
+        if (commutator)
+          gradient.compress(VectorOperation::add);
+        else
+          {
+            data.pressure_mass.compress(VectorOperation::add);
+            data.pressure_laplace.compress(VectorOperation::add);
+          }
 
-        // Inhomogeneous constraints (inflow, grain velocities): solve for
-        // the correction to the lifting that carries their values.
+        // Inhomogeneous constraints (inflow, grain velocities, pressure
+        // regions): solve for the correction to the lifting that carries
+        // their values.
         for (const auto &line : constraints.get_lines())
-          if (line.index < n_u && line.inhomogeneity != 0 &&
-              lifting.block(0).in_local_range(line.index))
-            lifting.block(0)(line.index) = line.inhomogeneity;
+          if (line.inhomogeneity != 0)
+            {
+              const unsigned int b = line.index < n_u ? 0 : 1;
+              const auto         i = line.index - (b == 0 ? 0 : n_u);
+              if (lifting.block(b).in_local_range(i))
+                lifting.block(b)(i) = line.inhomogeneity;
+            }
         data.stokes.subtract_plain(rhs, lifting);
 
         if (!boundary_conditions.has_pressure_face())
@@ -496,6 +741,8 @@ namespace softsand
         typename VelocityMultigrid<dim>::Settings settings;
         settings.smoother_degree = solver_parameters.smoother_degree;
         settings.smoothing_range = solver_parameters.smoothing_range;
+        settings.geometric_levels = solver_parameters.multigrid_geometric_levels;
+        settings.coarse_tolerance = solver_parameters.multigrid_coarse_tolerance;
         data.multigrid.initialize(dof_handler_velocity,
                                   data.velocity_constraints,
                                   data.velocity_operator,
@@ -504,7 +751,43 @@ namespace softsand
                                   mu,
                                   settings);
 
-        data.pressure_mass_ilu.initialize(data.pressure_mass);
+        if (commutator)
+          {
+            // X = B D^-1 B^T, D = diag(A) of the matrix-free operator.
+            data.velocity_operator->compute_inverse_diagonal(
+              data.inverse_diagonal);
+            TrilinosWrappers::MPI::Vector inverse(owned_partitioning[0],
+                                                  mpi_communicator);
+            for (const auto i : owned_partitioning[0])
+              inverse(i) = data.inverse_diagonal(i);
+            inverse.compress(VectorOperation::insert);
+            data.decoupled_inverse.reinit(0);
+            if (smooth)
+              {
+                TrilinosWrappers::SparseMatrix product;
+                gradient.Tmmult(product, gradient, inverse);
+                gradient.clear();
+                TrilinosWrappers::MPI::Vector decoupled;
+                discrete_brinkman_from_product(product,
+                                               data.pressure_block,
+                                               data.discrete_brinkman,
+                                               decoupled);
+                data.matrix_free->initialize_dof_vector(data.decoupled_inverse,
+                                                        1);
+                for (const auto i : owned_partitioning[1])
+                  data.decoupled_inverse(i) = decoupled(i);
+              }
+            else
+              {
+                gradient.Tmmult(data.discrete_brinkman, gradient, inverse);
+                gradient.clear();
+                make_pressure_diagonal_regular(data.discrete_brinkman);
+              }
+            data.discrete_brinkman_amg.initialize(data.discrete_brinkman,
+                                                  pressure_laplace_amg_data());
+          }
+        else
+          data.pressure_mass_ilu.initialize(data.pressure_mass);
         if (laplace)
           {
             data.pressure_laplace_amg.initialize(data.pressure_laplace,
@@ -536,11 +819,26 @@ namespace softsand
         std::max(solver_parameters.linear_tolerance * rhs_norm, 1e-300),
         false,
         false);
-      MatrixFreeBlockPreconditioner<dim> preconditioner(
-        data.stokes,
-        data.multigrid,
-        data.pressure_mass_ilu,
-        laplace ? &data.pressure_laplace_amg : nullptr);
+      const std::vector<unsigned int> constrained_pressure =
+        constrained_local_rows(*data.matrix_free->get_vector_partitioner(1),
+                               data.pressure_constraints);
+      const MatrixFreeBlockPreconditioner<dim> preconditioner =
+        commutator ?
+          MatrixFreeBlockPreconditioner<dim>(
+            data.stokes,
+            data.multigrid,
+            *data.velocity_operator,
+            data.discrete_brinkman,
+            data.discrete_brinkman_amg,
+            data.inverse_diagonal,
+            data.decoupled_inverse,
+            constrained_pressure,
+            solver_parameters.schur_inner_tolerance) :
+          MatrixFreeBlockPreconditioner<dim>(
+            data.stokes,
+            data.multigrid,
+            data.pressure_mass_ilu,
+            laplace ? &data.pressure_laplace_amg : nullptr);
       SolverFGMRES<BlockVectorType> solver(
         control, typename SolverFGMRES<BlockVectorType>::AdditionalData(
           solver_parameters.krylov_restart));

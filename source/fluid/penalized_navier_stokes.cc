@@ -475,10 +475,20 @@ namespace softsand
       velocity_components_coupled =
         velocity_components_coupled ||
         couples_velocity_components(Assembly::steady_stokes);
-      reinit_system_matrix();
+      // The matrix-free path assembles no global matrix; a matrix-based
+      // solve (transient, convective) allocates it on first assembly.
+      if (use_matrix_free(Assembly::steady_stokes))
+        {
+          preconditioner.reset();
+          system_matrix.clear();
+        }
+      else
+        reinit_system_matrix();
+      pressure_mass_matrix.clear();
+      pressure_laplace_matrix.clear();
+      if (solver_parameters.schur !=
+          SolverParameters::Schur::least_squares_commutator)
       {
-        pressure_mass_matrix.clear();
-        pressure_laplace_matrix.clear();
         Table<2, DoFTools::Coupling> coupling(dim + 1, dim + 1);
         for (unsigned int c = 0; c < dim + 1; ++c)
           for (unsigned int d = 0; d < dim + 1; ++d)
@@ -491,9 +501,11 @@ namespace softsand
                              relevant_partitioning,
                              moving_solids);
         pressure_mass_matrix.reinit(owned_partitioning, dsp, mpi_communicator);
-        pressure_laplace_matrix.reinit(owned_partitioning,
-                                       dsp,
-                                       mpi_communicator);
+        if (solver_parameters.schur ==
+            SolverParameters::Schur::cahouet_chabard)
+          pressure_laplace_matrix.reinit(owned_partitioning,
+                                         dsp,
+                                         mpi_communicator);
       }
 
       solution.reinit(owned_partitioning,
@@ -573,12 +585,16 @@ namespace softsand
       TimerOutput::Scope t(timer,
                            cell_callback == nullptr ? "fluid: assemble" :
                                                       "fluid: reactions");
-      if (cell_callback == nullptr && couples_velocity_components(kind) &&
-          !velocity_components_coupled)
+      if (cell_callback == nullptr &&
+          ((couples_velocity_components(kind) &&
+            !velocity_components_coupled) ||
+           system_matrix.n_block_rows() == 0))
         {
           // The first Newton step: the pattern needs the entries between
-          // velocity components. Its constraints are those of setup_dofs().
-          velocity_components_coupled = true;
+          // velocity components; or the first matrix-based assembly of a
+          // matrix-free scene. Its constraints are those of setup_dofs().
+          velocity_components_coupled =
+            velocity_components_coupled || couples_velocity_components(kind);
           if (moving_solids)
             make_constraints(false);
           reinit_system_matrix();
@@ -925,9 +941,10 @@ namespace softsand
               }
             constraints.distribute_local_to_global(
               local_matrix, local_rhs, dof_indices, system_matrix, system_rhs);
-            constraints.distribute_local_to_global(local_mass,
-                                                   dof_indices,
-                                                   pressure_mass_matrix);
+            if (schur != SolverParameters::Schur::least_squares_commutator)
+              constraints.distribute_local_to_global(local_mass,
+                                                     dof_indices,
+                                                     pressure_mass_matrix);
             if (schur == SolverParameters::Schur::cahouet_chabard)
               constraints.distribute_local_to_global(local_laplace,
                                                      dof_indices,

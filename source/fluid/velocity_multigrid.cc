@@ -31,9 +31,14 @@ namespace softsand
       mg_coarse.reset();
       transfer.reset();
 
-      triangulations =
-        MGTransferGlobalCoarseningTools::create_geometric_coarsening_sequence(
-          fine_dof_handler.get_triangulation());
+      if (settings.geometric_levels)
+        triangulations = MGTransferGlobalCoarseningTools::
+          create_geometric_coarsening_sequence(
+            fine_dof_handler.get_triangulation());
+      else
+        triangulations = {std::shared_ptr<const Triangulation<dim>>(
+          &fine_dof_handler.get_triangulation(),
+          [](const Triangulation<dim> *) {})};
       const unsigned int n_h_levels = triangulations.size();
       // Q1 on every mesh of the sequence, then Q2 on the active mesh.
       const unsigned int max_level = n_h_levels;

@@ -23,6 +23,23 @@ namespace softsand
     TrilinosWrappers::PreconditionAMG::AdditionalData
     pressure_laplace_amg_data();
 
+    /// Make the pressure matrix @p x regular for AMG and CG: negative
+    /// diagonals (constraint rows of -C) flipped, zero diagonals (rows that
+    /// nothing couples: constrained pressures) set to the mean diagonal.
+    void
+    make_pressure_diagonal_regular(TrilinosWrappers::SparseMatrix &x);
+
+    /// X = @p product - @p c, made regular: product = B D^-1 B^T and c the
+    /// pressure block -C of [A B^T; B -C] (rigid-node smoothing; the
+    /// positive constraint diagonal on constrained rows). Returns in
+    /// @p decoupled_inverse 1 / c_ii on the rows that B does not reach
+    /// and c does (constrained or wholly smoothed), else 0.
+    void
+    discrete_brinkman_from_product(const TrilinosWrappers::SparseMatrix &product,
+                                   const TrilinosWrappers::SparseMatrix &c,
+                                   TrilinosWrappers::SparseMatrix       &x,
+                                   TrilinosWrappers::MPI::Vector &decoupled_inverse);
+
     /**
      * Block upper-triangular preconditioner for the saddle-point system
      * [A B^T; B 0] of the penalized Navier-Stokes equations, applied inside

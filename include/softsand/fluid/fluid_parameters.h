@@ -121,6 +121,10 @@ namespace softsand
       /// Geometric multigrid of the matrix-free velocity block.
       unsigned int smoother_degree = 4;
       double       smoothing_range = 20;
+      /// Matrix free: geometric levels below Q1 (else AMG on assembled Q1).
+      bool         multigrid_geometric_levels = false;
+      /// Matrix free: relative tolerance of the coarse (Q1) solve.
+      double       multigrid_coarse_tolerance = 1e-3;
 
       static void
       declare_parameters(ParameterHandler &prm);

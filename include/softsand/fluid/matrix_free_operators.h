@@ -40,6 +40,9 @@ namespace softsand
     {
       using VA                               = VectorizedArray<Number>;
       Number                       viscosity = 1;
+      /// Per cell batch factor of the viscosity (0 in pressure-region
+      /// cells, which carry only the pressure term); empty = 1.
+      AlignedVector<VA>            viscosity_scale;
       Table<2, VA>                 reaction;
       Table<2, Tensor<1, dim, VA>> advection;          // rho w
       Table<2, Tensor<2, dim, VA>> advection_gradient; // rho grad w
@@ -162,9 +165,12 @@ namespace softsand
               for (unsigned int e = 0; e < dim; ++e)
                 force[d] += g[d][e] * value[e];
           }
+        const VectorizedArray<Number> mu =
+          c.viscosity_scale.empty() ? VectorizedArray<Number>(c.viscosity) :
+                                      c.viscosity * c.viscosity_scale[cell];
         for (unsigned int d = 0; d < dim; ++d)
           for (unsigned int e = 0; e < dim; ++e)
-            flux[d][e] = c.viscosity * grad[d][e];
+            flux[d][e] = mu * grad[d][e];
       }
 
       /// Apply the operator at the quadrature points (values and gradients
@@ -208,9 +214,12 @@ namespace softsand
       reinit(std::shared_ptr<const MatrixFree<dim, double>>          data,
              std::shared_ptr<const VelocityOperator<dim, 2, double>> velocity,
              const AffineConstraints<double> &velocity_constraints,
-             const AffineConstraints<double> &pressure_constraints);
+             const AffineConstraints<double> &pressure_constraints,
+             const TrilinosWrappers::SparseMatrix *pressure_block = nullptr);
 
-      /// dst = K src; identity on constrained rows.
+      /// dst = K src; identity on constrained rows. K = [A B^T; B -C] with
+      /// -C the assembled @p pressure_block of reinit() (rigid-node
+      /// pressure smoothing; none if null).
       void
       vmult(BlockVectorType &dst, const BlockVectorType &src) const;
       /// dst -= K src with src read without constraints (its constrained
@@ -221,6 +230,9 @@ namespace softsand
       /// dst = B^T p (velocity rows of the pressure gradient).
       void
       apply_gradient(VectorType &dst, const VectorType &pressure) const;
+      /// dst = B u (pressure rows of the divergence; constrained rows 0).
+      void
+      apply_divergence(VectorType &dst, const VectorType &velocity) const;
 
       void
       initialize_dof_vector(BlockVectorType &vector) const;
@@ -237,10 +249,18 @@ namespace softsand
                      VectorType                                  &dst,
                      const VectorType                            &src,
                      const std::pair<unsigned int, unsigned int> &range) const;
+      void
+      local_divergence(
+        const MatrixFree<dim, double>               &data,
+        VectorType                                  &dst,
+        const VectorType                            &src,
+        const std::pair<unsigned int, unsigned int> &range) const;
 
       std::shared_ptr<const MatrixFree<dim, double>>          matrix_free;
       std::shared_ptr<const VelocityOperator<dim, 2, double>> velocity;
       std::vector<unsigned int> constrained_velocity, constrained_pressure;
+      const TrilinosWrappers::SparseMatrix *pressure_block = nullptr;
+      mutable VectorType                    pressure_tmp;
     };
 
 

@@ -275,18 +275,14 @@ namespace softsand
       bool
       use_matrix_free(const Assembly kind) const
       {
-        // The matrix-free operator has no grad-div term and does not know
-        // the pressure regions (inlet, perimeter) of the Hele-Shaw cell.
+        // The matrix-free operator has no grad-div term.
         return solver_parameters.linear_solver ==
                  SolverParameters::LinearSolver::matrix_free &&
                kind == Assembly::steady_stokes &&
                solver_parameters.schur !=
                  SolverParameters::Schur::discrete_brinkman &&
-               solver_parameters.schur !=
-                 SolverParameters::Schur::least_squares_commutator &&
                solver_parameters.grad_div == 0 &&
-               solver_parameters.grad_div_cell_factor == 0 &&
-               !boundary_conditions.has_pressure_regions();
+               solver_parameters.grad_div_cell_factor == 0;
       }
       /// Cell matrix, right-hand side and dof indices before constraints.
       using CellCallback =
@@ -341,8 +337,9 @@ namespace softsand
       }
       /// Rigid nodes, matrix-based solves: smooth the pressure of cells
       /// whose velocity nodes are (nearly) all imposed (see
-      /// FluidParameters) rather than pin it. The matrix-free operator has
-      /// no pressure-pressure block: its steady solves keep the pins.
+      /// FluidParameters) rather than pin it. The matrix-free path has the
+      /// block with the least-squares commutator only; with the
+      /// Cahouet-Chabard block its steady solves keep the pins.
       bool
       smooth_solid_pressure() const
       {
@@ -350,7 +347,9 @@ namespace softsand
         return fluid_parameters.solid_model ==
                  FluidParameters::SolidModel::rigid_nodes &&
                fluid_parameters.rigid_node_pressure_smoothing > 0 &&
-               !use_matrix_free(Assembly::steady_stokes);
+               (!use_matrix_free(Assembly::steady_stokes) ||
+                solver_parameters.schur ==
+                  SolverParameters::Schur::least_squares_commutator);
       }
       /// Whether velocity dof @p i is imposed: rigid, Dirichlet, or hanging
       /// on rigid parents only (make_constraints() must have run).

@@ -54,6 +54,11 @@ namespace softsand
         double       smoothing_range       = 20;
         unsigned int eigenvalue_iterations = 20;
         double       coarse_tolerance      = 1e-3;
+        /// Geometric levels below Q1 on the active mesh (true), or none:
+        /// the coarse problem is Q1 on the active mesh, solved by AMG on
+        /// its assembled matrix (p-multigrid with an algebraic coarse
+        /// solver; it sees the grains as the fine mesh does).
+        bool         geometric_levels      = true;
       };
 
       /// Homogeneous constraints of a level: boundary, hanging and solid.
