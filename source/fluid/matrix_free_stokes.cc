@@ -16,7 +16,9 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
@@ -24,6 +26,7 @@
 #include <deal.II/matrix_free/fe_evaluation.h>
 
 #include <deal.II/numerics/vector_tools.h>
+
 
 #include <softsand/fluid/block_schur_preconditioner.h>
 #include <softsand/fluid/matrix_free_operators.h>
@@ -276,7 +279,7 @@ namespace softsand
 
       BlockVectorType rhs, lifting, delta;
       // Least-squares commutator: B^T, released once X is formed.
-      TrilinosWrappers::SparseMatrix gradient;
+      TrilinosWrappers::SparseMatrix gradient, divergence;
       {
         TimerOutput::Scope t(timer, "fluid: assemble");
 
@@ -371,10 +374,15 @@ namespace softsand
           }
         if (commutator)
           {
-            TrilinosWrappers::SparsityPattern sparsity(owned_partitioning[0],
-                                                       owned_partitioning[1],
-                                                       relevant_partitioning[0],
-                                                       mpi_communicator);
+            // Rows written by other ranks reach their owners in compress()
+            // (a rectangular Trilinos pattern with writable rows corrupted
+            // the heap on 2 ranks).
+            DynamicSparsityPattern sparsity(dof_handler_velocity.n_dofs(),
+                                            dof_handler_pressure.n_dofs(),
+                                            relevant_partitioning[0]),
+              transposed(dof_handler_pressure.n_dofs(),
+                         dof_handler_velocity.n_dofs(),
+                         relevant_partitioning[1]);
             std::vector<types::global_dof_index> u(fe_velocity.n_dofs_per_cell()),
               p(fe_pressure.n_dofs_per_cell());
             for (const auto &cell : dof_handler_velocity.active_cell_iterators())
@@ -389,9 +397,25 @@ namespace softsand
                     ->get_dof_indices(p);
                   data.velocity_constraints.add_entries_local_to_global(
                     u, data.pressure_constraints, p, sparsity, false);
+                  data.pressure_constraints.add_entries_local_to_global(
+                    p, data.velocity_constraints, u, transposed, false);
                 }
-            sparsity.compress();
-            gradient.reinit(sparsity);
+            SparsityTools::distribute_sparsity_pattern(sparsity,
+                                                       owned_partitioning[0],
+                                                       mpi_communicator,
+                                                       relevant_partitioning[0]);
+            gradient.reinit(owned_partitioning[0],
+                            owned_partitioning[1],
+                            sparsity,
+                            mpi_communicator);
+            SparsityTools::distribute_sparsity_pattern(transposed,
+                                                       owned_partitioning[1],
+                                                       mpi_communicator,
+                                                       relevant_partitioning[1]);
+            divergence.reinit(owned_partitioning[1],
+                              owned_partitioning[0],
+                              transposed,
+                              mpi_communicator);
           }
         else
           for (TrilinosWrappers::SparseMatrix *matrix :
@@ -442,7 +466,8 @@ namespace softsand
         const unsigned int n_u_dofs = fe_velocity.n_dofs_per_cell();
         FullMatrix<double> local_mass(n_p_dofs, n_p_dofs),
           local_laplace(n_p_dofs, n_p_dofs), local_gradient(n_u_dofs, n_p_dofs),
-          local_smoothing(n_p_dofs, n_p_dofs);
+          local_smoothing(n_p_dofs, n_p_dofs),
+          local_divergence(n_p_dofs, n_u_dofs);
         Vector<double> local_pressure_rhs(n_p_dofs);
         Vector<double>                       local_face_rhs(n_u_dofs);
         std::vector<types::global_dof_index> u_dofs(n_u_dofs), p_dofs(n_p_dofs);
@@ -557,6 +582,13 @@ namespace softsand
                       data.pressure_constraints,
                       p_dofs,
                       gradient);
+                    local_divergence.copy_transposed(local_gradient);
+                    data.pressure_constraints.distribute_local_to_global(
+                      local_divergence,
+                      p_dofs,
+                      data.velocity_constraints,
+                      u_dofs,
+                      divergence);
                   }
 
                 local_mass    = 0;
@@ -647,7 +679,10 @@ namespace softsand
         if (smooth)
           data.pressure_block.compress(VectorOperation::add);
         if (commutator)
-          gradient.compress(VectorOperation::add);
+          {
+            gradient.compress(VectorOperation::add);
+            divergence.compress(VectorOperation::add);
+          }
         else
           {
             data.pressure_mass.compress(VectorOperation::add);
@@ -761,12 +796,15 @@ namespace softsand
             for (const auto i : owned_partitioning[0])
               inverse(i) = data.inverse_diagonal(i);
             inverse.compress(VectorOperation::insert);
+            // B and B^T both assembled: deal.II's Tmmult (B^T alone)
+            // corrupted the heap on 2 ranks.
+            TrilinosWrappers::SparseMatrix product;
+            divergence.mmult(product, gradient, inverse);
+            gradient.clear();
+            divergence.clear();
             data.decoupled_inverse.reinit(0);
             if (smooth)
               {
-                TrilinosWrappers::SparseMatrix product;
-                gradient.Tmmult(product, gradient, inverse);
-                gradient.clear();
                 TrilinosWrappers::MPI::Vector decoupled;
                 discrete_brinkman_from_product(product,
                                                data.pressure_block,
@@ -779,8 +817,8 @@ namespace softsand
               }
             else
               {
-                gradient.Tmmult(data.discrete_brinkman, gradient, inverse);
-                gradient.clear();
+                data.discrete_brinkman.reinit(product.trilinos_matrix());
+                product.clear();
                 make_pressure_diagonal_regular(data.discrete_brinkman);
               }
             data.discrete_brinkman_amg.initialize(data.discrete_brinkman,
