@@ -172,7 +172,18 @@ namespace softsand
           TrilinosWrappers::SparsityPattern dsp(
             dof_handler.locally_owned_dofs(),
             dof_handler.get_triangulation().get_communicator());
-          DoFTools::make_sparsity_pattern(dof_handler, dsp, *constraints);
+          // Without the Newton term the components do not couple: a third
+          // of the entries (coarse level of the velocity multigrid).
+          const unsigned int           n_components = dof_handler.get_fe().n_components();
+          Table<2, DoFTools::Coupling> coupling(n_components, n_components);
+          for (unsigned int c = 0; c < n_components; ++c)
+            for (unsigned int d = 0; d < n_components; ++d)
+              coupling[c][d] = (c == d || has_newton) ? DoFTools::always :
+                                                        DoFTools::none;
+          DoFTools::make_sparsity_pattern(dof_handler,
+                                          coupling,
+                                          dsp,
+                                          *constraints);
           dsp.compress();
           system_matrix.reinit(dsp);
           MatrixFreeTools::compute_matrix(*this->matrix_free,

@@ -198,8 +198,6 @@ namespace softsand
     void
     PenalizedNavierStokes<dim>::setup_matrix_free_dofs()
     {
-      if (!matrix_free_data)
-        matrix_free_data = std::make_shared<MatrixFreeData>();
       dof_handler_velocity.distribute_dofs(fe_velocity);
       dof_handler_pressure.distribute_dofs(fe_pressure);
 
@@ -268,6 +266,7 @@ namespace softsand
       Assert(kind == Assembly::steady_stokes, ExcNotImplemented());
       (void)kind;
 
+      matrix_free_data = std::make_shared<MatrixFreeData>();
       MatrixFreeData               &data  = *matrix_free_data;
       const double                  mu    = fluid_parameters.viscosity;
       const types::global_dof_index n_u   = dof_handler_velocity.n_dofs();
@@ -896,9 +895,19 @@ namespace softsand
         std::copy(delta.block(b).begin(),
                   delta.block(b).end(),
                   x.block(b).begin());
+      // Everything above is rebuilt by the next solve: release it before
+      // the reactions and the grains' step, so that the peak memory is the
+      // larger of the two phases rather than their sum.
+      const unsigned int iterations = rhs_norm > 0 ? control.last_step() : 0;
+      matrix_free_data.reset();
+      rhs.reinit(0);
+      lifting.reinit(0);
+      delta.reinit(0);
+      GrowingVectorMemory<BlockVectorType>::release_unused_memory();
+      GrowingVectorMemory<VectorType>::release_unused_memory();
       // A zero right-hand side (fluid and grains at rest) needs no solve:
       // zero iterations, not the solver control's unset step count.
-      return accept_linear_solution(x, rhs_norm > 0 ? control.last_step() : 0);
+      return accept_linear_solution(x, iterations);
     }
 
     template void
