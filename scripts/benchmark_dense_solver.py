@@ -17,6 +17,8 @@ Problems (--problems):
   fig3             parameters/pack_permeability.prm, N = --fig3-n (6), QoI K
   sphere           drag_sphere.prm, penalization, Theta --sphere-theta
                    (1e12), N = --sphere-n (12), QoI drag force
+  sc               sc_permeability.prm (rigid nodes) at solid fraction
+                   --sc-c (0.45), N = --sc-n (16), QoI K
 With --steps S > 1 the coupled problems run S steps and print each step's
 iterations and wall time (later steps: warm start, kept preconditioner).
 
@@ -72,6 +74,11 @@ def problems(a):
                             'radial_permeability'),
         'fig3': ('parameters/pack_permeability.prm',
                  [('mesh/cells per diameter', str(a.fig3_n))], 'permeability'),
+        'sc': ('parameters/sc_permeability.prm',
+               [('mesh/cells per diameter', str(a.sc_n)),
+                ('grains/diameter', '%.10g' % (
+                    2 * 2e-4 * (3 * a.sc_c / (4 * 3.141592653589793)) **
+                    (1. / 3)))], 'permeability'),
         'sphere': ('parameters/drag_sphere.prm',
                    [('mesh/cells per diameter', str(a.sphere_n)),
                     ('fluid/solid model', 'penalization'),
@@ -168,6 +175,8 @@ def main():
     ap.add_argument('--fig3-n', type=int, default=6)
     ap.add_argument('--sphere-n', type=int, default=12)
     ap.add_argument('--sphere-theta', default='1e12')
+    ap.add_argument('--sc-c', type=float, default=0.45)
+    ap.add_argument('--sc-n', type=int, default=16)
     ap.add_argument('--linear-tolerance', default=None,
                     help='override the scenes\' fluid solver/linear tolerance')
     ap.add_argument('--reference', action='store_true',
