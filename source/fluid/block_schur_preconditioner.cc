@@ -211,12 +211,16 @@ namespace softsand
           system_matrix.block(0, 0).vmult(tmp_u2, tmp_u);
           tmp_u2.scale(inverse_velocity_diagonal);
           system_matrix.block(1, 0).vmult(tmp_p2, tmp_u2);
+          // The pressure block (-C, constraint diagonals) in the middle
+          // too (Elman et al.'s stabilized commutator): pressure modes that
+          // no free velocity sees (B^T p = 0: constrained rows, pockets that
+          // only the rigid-node smoothing couples) then get S^-1 = C^-1
+          // exactly. Without it FGMRES stalled on the second coupled step of
+          // the small Hele-Shaw cell (doc/solver_study.md).
+          system_matrix.block(1, 1).vmult(dst.block(1), tmp_p);
+          tmp_p2 -= dst.block(1);
           solve_discrete_brinkman(dst.block(1), tmp_p2);
           dst.block(1) *= -1.;
-          // Constrained pressure rows are decoupled: solve them exactly.
-          tmp_p = src.block(1);
-          tmp_p.scale(decoupled_pressure_inverse);
-          dst.block(1) += tmp_p;
         }
       else
         {

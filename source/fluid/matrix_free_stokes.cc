@@ -56,10 +56,8 @@ namespace softsand
       TrilinosWrappers::SparseMatrix                     discrete_brinkman;
       TrilinosWrappers::PreconditionAMG                  discrete_brinkman_amg;
       LinearAlgebra::distributed::Vector<double>         inverse_diagonal;
-      /// Rigid-node pressure smoothing: the pressure block -C, and
-      /// 1 / (-C_ii) on rows that B does not reach (else 0).
+      /// Rigid-node pressure smoothing: the pressure block -C.
       TrilinosWrappers::SparseMatrix                     pressure_block;
-      LinearAlgebra::distributed::Vector<double>         decoupled_inverse;
     };
 
 
@@ -99,7 +97,7 @@ namespace softsand
           const TrilinosWrappers::SparseMatrix        &discrete_brinkman,
           const TrilinosWrappers::PreconditionAMG     &discrete_brinkman_amg,
           const VectorType                            &inverse_diagonal,
-          const VectorType                            &decoupled_inverse,
+          const TrilinosWrappers::SparseMatrix        *pressure_block,
           const std::vector<unsigned int>             &constrained_pressure,
           const double                                 inner_tolerance)
             : stokes(stokes)
@@ -108,7 +106,7 @@ namespace softsand
             , discrete_brinkman(&discrete_brinkman)
             , discrete_brinkman_amg(&discrete_brinkman_amg)
             , inverse_diagonal(&inverse_diagonal)
-            , decoupled_inverse(&decoupled_inverse)
+            , pressure_block(pressure_block)
             , constrained_pressure(&constrained_pressure)
             , inner_tolerance(inner_tolerance)
         {}
@@ -145,7 +143,7 @@ namespace softsand
         const TrilinosWrappers::PreconditionAMG *discrete_brinkman_amg =
           nullptr;
         const VectorType                        *inverse_diagonal     = nullptr;
-        const VectorType                        *decoupled_inverse    = nullptr;
+        const TrilinosWrappers::SparseMatrix    *pressure_block       = nullptr;
         const std::vector<unsigned int>         *constrained_pressure = nullptr;
         const double                             inner_tolerance      = 0;
         mutable VectorType                       tmp_u, tmp_u2, tmp_p, tmp_p2;
@@ -164,13 +162,15 @@ namespace softsand
           velocity->vmult(tmp_u2, tmp_u);
           tmp_u2.scale(*inverse_diagonal);
           stokes.apply_divergence(tmp_p2, tmp_u2);
+          // The smoothing block -C in the middle too (as the matrix-based
+          // commutator): exact on modes that no free velocity sees.
+          if (pressure_block != nullptr)
+            {
+              pressure_block->vmult(dst, tmp_p);
+              tmp_p2 -= dst;
+            }
           solve_discrete_brinkman(dst, tmp_p2);
           dst *= -1.;
-          // Rows that only the smoothing couples: their diagonal, exactly.
-          if (decoupled_inverse->size() > 0)
-            for (unsigned int i = 0; i < dst.locally_owned_size(); ++i)
-              dst.local_element(i) += decoupled_inverse->local_element(i) *
-                                      src.local_element(i);
           for (const unsigned int i : *constrained_pressure)
             dst.local_element(i) = src.local_element(i);
         }
@@ -801,7 +801,6 @@ namespace softsand
             divergence.mmult(product, gradient, inverse);
             gradient.clear();
             divergence.clear();
-            data.decoupled_inverse.reinit(0);
             if (smooth)
               {
                 TrilinosWrappers::MPI::Vector decoupled;
@@ -809,10 +808,6 @@ namespace softsand
                                                data.pressure_block,
                                                data.discrete_brinkman,
                                                decoupled);
-                data.matrix_free->initialize_dof_vector(data.decoupled_inverse,
-                                                        1);
-                for (const auto i : owned_partitioning[1])
-                  data.decoupled_inverse(i) = decoupled(i);
               }
             else
               {
@@ -868,7 +863,7 @@ namespace softsand
             data.discrete_brinkman,
             data.discrete_brinkman_amg,
             data.inverse_diagonal,
-            data.decoupled_inverse,
+            smooth ? &data.pressure_block : nullptr,
             constrained_pressure,
             solver_parameters.schur_inner_tolerance) :
           MatrixFreeBlockPreconditioner<dim>(

@@ -66,8 +66,10 @@ namespace softsand
      * is not enough there (1,768): the contrast of D (1e11) needs the inner
      * CG.
      *
-     * schur = least squares commutator: S^-1 ~ X^-1 (B D^-1 A D^-1 B^T)
-     * X^-1 (Elman et al.'s diagonally scaled BFBT; no pressure mass matrix).
+     * schur = least squares commutator: S^-1 ~ X^-1 (B D^-1 A D^-1 B^T +
+     * C) X^-1 (Elman et al.'s diagonally scaled BFBT, with the pressure
+     * block in the middle as in their stabilized variant; no pressure mass
+     * matrix).
      * Where the penalty dominates, A ~ D and it reduces to X^-1; in the
      * fluid it is the commutator approximation, which also contains the
      * convection of an Oseen block. Two inner CG solves per application.
