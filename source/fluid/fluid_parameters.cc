@@ -182,9 +182,10 @@ namespace softsand
         "packs: a pore closed by grains stays closed in D, where the "
         "quadrature-point Laplacian leaks through cut cells; switches to "
         "the matrix-based solver); least squares commutator = "
-        "X^-1 (B D^-1 A D^-1 B^T) X^-1 with X = B D^-1 B^T (diagonally "
-        "scaled BFBT: the Darcy limit inside grains, the commutator in the "
-        "fluid, convection included; two inner CG solves; matrix based); "
+        "X^-1 (B D^-1 A D^-1 B^T + C) X^-1 with X = B D^-1 B^T + C, C the "
+        "rigid-node pressure smoothing (diagonally scaled BFBT: the Darcy "
+        "limit inside grains, the commutator in the fluid, convection "
+        "included; two inner CG solves; matrix based or matrix free); "
         "weighted mass = mass matrix weighted "
         "by 1/(mu + beta h^2); mass = 1/mu mass matrix (plain Stokes).");
       prm.declare_entry("schur inner tolerance",
@@ -259,8 +260,10 @@ namespace softsand
         "block preconditioned by one geometric multigrid V-cycle (Q2, then "
         "Q1 on the globally coarsened meshes); matrix based: Trilinos "
         "matrices, velocity block by one ML AMG V-cycle. Both use the "
-        "Schur complement approximation below. Solves with convection "
-        "(Navier-Stokes, transient) are matrix based for now.");
+        "Schur complement approximation below; matrix free assembles only "
+        "Q1 matrices (about half the peak memory with the least squares "
+        "commutator, doc/solver_study.md). Solves with convection "
+        "(Navier-Stokes, transient) and grad-div are matrix based.");
       prm.declare_entry("multigrid smoother degree",
                         "4",
                         Patterns::Integer(1, 20),

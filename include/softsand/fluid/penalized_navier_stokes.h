@@ -275,14 +275,18 @@ namespace softsand
       bool
       use_matrix_free(const Assembly kind) const
       {
-        // The matrix-free operator has no grad-div term.
+        // The matrix-free operator has no grad-div term; of its Schur
+        // blocks only the commutator knows the pressure regions.
         return solver_parameters.linear_solver ==
                  SolverParameters::LinearSolver::matrix_free &&
                kind == Assembly::steady_stokes &&
                solver_parameters.schur !=
                  SolverParameters::Schur::discrete_brinkman &&
                solver_parameters.grad_div == 0 &&
-               solver_parameters.grad_div_cell_factor == 0;
+               solver_parameters.grad_div_cell_factor == 0 &&
+               (!boundary_conditions.has_pressure_regions() ||
+                solver_parameters.schur ==
+                  SolverParameters::Schur::least_squares_commutator);
       }
       /// Cell matrix, right-hand side and dof indices before constraints.
       using CellCallback =
