@@ -261,8 +261,8 @@ namespace softsand
         "Q1 on the globally coarsened meshes); matrix based: Trilinos "
         "matrices, velocity block by one ML AMG V-cycle. Both use the "
         "Schur complement approximation below; matrix free assembles only "
-        "Q1 matrices (about half the peak memory with the least squares "
-        "commutator, doc/solver_study.md). Solves with convection "
+        "Q1 matrices (with the least squares commutator, peak memory 933 "
+        "instead of 1,479 MB on the 2-cell Hele-Shaw cell, doc/solver_study.md). Solves with convection "
         "(Navier-Stokes, transient) and grad-div are matrix based.");
       prm.declare_entry("multigrid smoother degree",
                         "4",
