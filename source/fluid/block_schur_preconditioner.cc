@@ -10,19 +10,45 @@ namespace softsand
   {
     namespace
     {
+      /// Make the pressure matrix @p x regular for AMG and CG: negative
+      /// diagonals (constraint rows of -C) flipped, zero diagonals (rows
+      /// that nothing couples: constrained pressures) set to the mean.
+      void
+      make_pressure_diagonal_regular(TrilinosWrappers::SparseMatrix &x)
+      {
+        const auto range = x.local_range();
+        double     sum = 0, count = 0;
+        for (auto i = range.first; i < range.second; ++i)
+          if (x.diag_element(i) > 0)
+            {
+              sum += x.diag_element(i);
+              ++count;
+            }
+        const MPI_Comm comm = x.get_mpi_communicator();
+        const double   mean = Utilities::MPI::sum(sum, comm) /
+                            std::max(1., Utilities::MPI::sum(count, comm));
+        for (auto i = range.first; i < range.second; ++i)
+          {
+            const double d = x.diag_element(i);
+            if (d < 0)
+              x.set(i, i, -d);
+            else if (!(d > 0))
+              x.set(i, i, mean);
+          }
+        x.compress(VectorOperation::insert);
+      }
+
+
       /**
        * X = B D^-1 B^T + C of the assembled saddle-point matrix
        * [A B^T; B -C], D = diag(A), with a regular diagonal on every row;
-       * returns D^-1 in @p inverse and, in @p decoupled_inverse, 1 / the
-       * (1,1) diagonal of the pressure rows that B does not reach
-       * (constrained), else 0.
+       * returns D^-1 in @p inverse.
        */
       void
       build_discrete_brinkman(
         const TrilinosWrappers::BlockSparseMatrix &system_matrix,
         TrilinosWrappers::SparseMatrix            &discrete_brinkman,
-        TrilinosWrappers::MPI::Vector             &inverse,
-        TrilinosWrappers::MPI::Vector             &decoupled_inverse)
+        TrilinosWrappers::MPI::Vector             &inverse)
       {
         const auto &a = system_matrix.block(0, 0);
         inverse.reinit(a.locally_owned_domain_indices(),
@@ -40,65 +66,33 @@ namespace softsand
                                         system_matrix.block(0, 1),
                                         inverse);
         discrete_brinkman_from_product(product,
-                                       system_matrix.block(1, 1),
-                                       discrete_brinkman,
-                                       decoupled_inverse);
+                                       &system_matrix.block(1, 1),
+                                       discrete_brinkman);
       }
     } // namespace
 
 
     void
-    make_pressure_diagonal_regular(TrilinosWrappers::SparseMatrix &x)
-    {
-      const auto range = x.local_range();
-      double     sum = 0, count = 0;
-      for (auto i = range.first; i < range.second; ++i)
-        if (x.diag_element(i) > 0)
-          {
-            sum += x.diag_element(i);
-            ++count;
-          }
-      const MPI_Comm comm = x.get_mpi_communicator();
-      const double   mean = Utilities::MPI::sum(sum, comm) /
-                          std::max(1., Utilities::MPI::sum(count, comm));
-      for (auto i = range.first; i < range.second; ++i)
-        {
-          const double d = x.diag_element(i);
-          if (d < 0)
-            x.set(i, i, -d);
-          else if (!(d > 0))
-            x.set(i, i, mean);
-        }
-      x.compress(VectorOperation::insert);
-    }
-
-
-    void
     discrete_brinkman_from_product(const TrilinosWrappers::SparseMatrix &product,
-                                   const TrilinosWrappers::SparseMatrix &c,
-                                   TrilinosWrappers::SparseMatrix       &x,
-                                   TrilinosWrappers::MPI::Vector &decoupled_inverse)
+                                   const TrilinosWrappers::SparseMatrix *c,
+                                   TrilinosWrappers::SparseMatrix       &x)
     {
-      decoupled_inverse.reinit(c.locally_owned_range_indices(),
-                               c.get_mpi_communicator());
-      const auto range = product.local_range();
-      for (auto i = range.first; i < range.second; ++i)
-        if (product.diag_element(i) == 0 && c.diag_element(i) != 0)
-          decoupled_inverse(i) = 1. / c.diag_element(i);
-      decoupled_inverse.compress(VectorOperation::insert);
       // The pressure block is -C (rigid-node smoothing) on coupled rows
       // and the positive constraint diagonal on constrained rows, which
       // have empty B rows: subtract it, then make the constrained
       // diagonals positive again and give zero diagonals the mean, so
       // that AMG and CG see a regular positive matrix (these rows are
       // overwritten by the constraints).
+      if (c == nullptr)
+        x.reinit(product.trilinos_matrix());
+      else
       {
         Epetra_CrsMatrix *sum  = nullptr;
         const int         ierr = EpetraExt::MatrixMatrix::Add(
           product.trilinos_matrix(),
           false,
           1.,
-          c.trilinos_matrix(),
+          c->trilinos_matrix(),
           false,
           -1.,
           sum);
@@ -163,8 +157,7 @@ namespace softsand
             {
               build_discrete_brinkman(system_matrix,
                                       discrete_brinkman,
-                                      inverse_velocity_diagonal,
-                                      decoupled_pressure_inverse);
+                                      inverse_velocity_diagonal);
               pressure_laplace_amg.initialize(discrete_brinkman, data);
             }
           else

@@ -2,9 +2,10 @@
 // operator applied cell by cell (sum factorization), the velocity block
 // preconditioned by one geometric multigrid V-cycle, the Schur complement by
 // the same approximations as the matrix-based path: the least-squares
-// commutator X^-1 (B D^-1 A D^-1 B^T) X^-1 with A and B applied matrix free
-// and only X = B D^-1 B^T assembled (Q1, about a 25th of the unknowns), or
-// Cahouet-Chabard (two assembled Q1 pressure matrices).
+// commutator X^-1 (B D^-1 A D^-1 B^T + C) X^-1 with A and B applied matrix
+// free and only Q1 pressure matrices assembled (X = B D^-1 B^T + C, the
+// rigid-node smoothing C; about a 25th of the unknowns), or Cahouet-Chabard
+// (two assembled Q1 pressure matrices).
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -15,18 +16,17 @@
 
 #include <deal.II/grid/grid_tools.h>
 
-#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <deal.II/matrix_free/fe_evaluation.h>
 
 #include <deal.II/numerics/vector_tools.h>
-
 
 #include <softsand/fluid/block_schur_preconditioner.h>
 #include <softsand/fluid/matrix_free_operators.h>
@@ -52,7 +52,7 @@ namespace softsand
       TrilinosWrappers::SparseMatrix                     pressure_laplace;
       TrilinosWrappers::PreconditionILU                  pressure_mass_ilu;
       TrilinosWrappers::PreconditionAMG                  pressure_laplace_amg;
-      /// Least-squares commutator: X = B D^-1 B^T, its AMG, D^-1.
+      /// Least-squares commutator: X = B D^-1 B^T + C, its AMG, D^-1.
       TrilinosWrappers::SparseMatrix                     discrete_brinkman;
       TrilinosWrappers::PreconditionAMG                  discrete_brinkman_amg;
       LinearAlgebra::distributed::Vector<double>         inverse_diagonal;
@@ -67,7 +67,7 @@ namespace softsand
        * Block upper-triangular preconditioner of the matrix-free path:
        * p = -S~^-1 r_p, then one multigrid V-cycle for u from r_u - B^T p.
        * S~^-1 is either M_p(1/mu)^-1 + L_p(1/beta)^-1 (Cahouet-Chabard) or
-       * the least-squares commutator X^-1 (B D^-1 A D^-1 B^T) X^-1 (see
+       * the least-squares commutator X^-1 (B D^-1 A D^-1 B^T + C) X^-1 (see
        * BlockSchurPreconditioner); constrained pressure rows are identity
        * rows of the operator, so their block is the identity.
        */
@@ -148,7 +148,7 @@ namespace softsand
         const double                             inner_tolerance      = 0;
         mutable VectorType                       tmp_u, tmp_u2, tmp_p, tmp_p2;
 
-        /// dst = -X^-1 (B D^-1 A D^-1 B^T) X^-1 src on coupled rows.
+        /// dst = -X^-1 (B D^-1 A D^-1 B^T + C) X^-1 src on coupled rows.
         void
         apply_commutator(VectorType &dst, const VectorType &src) const
         {
@@ -277,32 +277,49 @@ namespace softsand
       const bool smooth = smooth_solid_pressure();
 
       BlockVectorType rhs, lifting, delta;
-      // Least-squares commutator: B^T, released once X is formed.
+      // Least-squares commutator: B^T and B, released once X is formed.
       TrilinosWrappers::SparseMatrix gradient, divergence;
+      // The smoothing's lifting: the pressure constraints with their
+      // values (pressure regions).
+      AffineConstraints<double> pressure_lifting_constraints;
       {
         TimerOutput::Scope t(timer, "fluid: assemble");
 
-        // Homogeneous copies of the combined constraints, split by block.
+        // Homogeneous copies of the combined constraints, split by block
+        // (and the pressure ones with their values for the smoothing).
         data.velocity_constraints.clear();
         data.velocity_constraints.reinit(relevant_partitioning[0]);
         data.pressure_constraints.clear();
         data.pressure_constraints.reinit(relevant_partitioning[1]);
+        if (smooth)
+          pressure_lifting_constraints.reinit(relevant_partitioning[1]);
+        const auto copy_line = [n_u](const auto                &line,
+                                     AffineConstraints<double> &c) {
+          const bool                    velocity_line = line.index < n_u;
+          const types::global_dof_index shift = velocity_line ? 0 : n_u;
+          c.add_line(line.index - shift);
+          for (const auto &[column, weight] : line.entries)
+            {
+              Assert((column < n_u) == velocity_line, ExcInternalError());
+              c.add_entry(line.index - shift, column - shift, weight);
+            }
+        };
         for (const auto &line : constraints.get_lines())
-          {
-            const bool                    velocity_line = line.index < n_u;
-            const types::global_dof_index shift = velocity_line ? 0 : n_u;
-            AffineConstraints<double>    &c     = velocity_line ?
-                                                    data.velocity_constraints :
-                                                    data.pressure_constraints;
-            c.add_line(line.index - shift);
-            for (const auto &[column, weight] : line.entries)
-              {
-                Assert((column < n_u) == velocity_line, ExcInternalError());
-                c.add_entry(line.index - shift, column - shift, weight);
-              }
-          }
+          if (line.index < n_u)
+            copy_line(line, data.velocity_constraints);
+          else
+            {
+              copy_line(line, data.pressure_constraints);
+              if (smooth)
+                {
+                  copy_line(line, pressure_lifting_constraints);
+                  pressure_lifting_constraints.set_inhomogeneity(
+                    line.index - n_u, line.inhomogeneity);
+                }
+            }
         data.velocity_constraints.close();
         data.pressure_constraints.close();
+        pressure_lifting_constraints.close();
 
         typename MatrixFree<dim, double>::AdditionalData additional_data;
         additional_data.tasks_parallel_scheme =
@@ -336,30 +353,15 @@ namespace softsand
         data.stokes.initialize_dof_vector(lifting);
         data.stokes.initialize_dof_vector(delta);
 
-        // Pressure blocks of the Schur approximation (Q1, small), or the
-        // gradient B^T whose product gives X (released once X is formed).
+        // Pressure blocks of the Schur approximation (Q1, small), or B^T
+        // and B whose product gives X (released once X is formed).
         data.pressure_mass.clear();
         data.pressure_laplace.clear();
         data.discrete_brinkman.clear();
         data.pressure_block.clear();
-        // The smoothing's lifting: the pressure constraints with their
-        // values (pressure regions).
-        AffineConstraints<double> pressure_lifting_constraints;
-        if (smooth)
-          {
-            pressure_lifting_constraints.reinit(relevant_partitioning[1]);
-            for (const auto &line : constraints.get_lines())
-              if (line.index >= n_u)
-                {
-                  pressure_lifting_constraints.add_line(line.index - n_u);
-                  for (const auto &[column, weight] : line.entries)
-                    pressure_lifting_constraints.add_entry(line.index - n_u,
-                                                           column - n_u,
-                                                           weight);
-                  pressure_lifting_constraints.set_inhomogeneity(
-                    line.index - n_u, line.inhomogeneity);
-                }
-            pressure_lifting_constraints.close();
+        // A Q1 pressure matrix with the pressure constraints' pattern.
+        const auto reinit_pressure_matrix =
+          [&](TrilinosWrappers::SparseMatrix &matrix) {
             TrilinosWrappers::SparsityPattern sparsity(owned_partitioning[1],
                                                        owned_partitioning[1],
                                                        relevant_partitioning[1],
@@ -369,8 +371,10 @@ namespace softsand
                                             data.pressure_constraints,
                                             false);
             sparsity.compress();
-            data.pressure_block.reinit(sparsity);
-          }
+            matrix.reinit(sparsity);
+          };
+        if (smooth)
+          reinit_pressure_matrix(data.pressure_block);
         if (commutator)
           {
             // Rows written by other ranks reach their owners in compress()
@@ -417,19 +421,9 @@ namespace softsand
                               mpi_communicator);
           }
         else
-          for (TrilinosWrappers::SparseMatrix *matrix :
-               {&data.pressure_mass, &data.pressure_laplace})
           {
-            TrilinosWrappers::SparsityPattern sparsity(owned_partitioning[1],
-                                                       owned_partitioning[1],
-                                                       relevant_partitioning[1],
-                                                       mpi_communicator);
-            DoFTools::make_sparsity_pattern(dof_handler_pressure,
-                                            sparsity,
-                                            data.pressure_constraints,
-                                            false);
-            sparsity.compress();
-            matrix->reinit(sparsity);
+            reinit_pressure_matrix(data.pressure_mass);
+            reinit_pressure_matrix(data.pressure_laplace);
           }
 
         // The same coefficients as assemble(): beta, the right-hand side
@@ -506,11 +500,10 @@ namespace softsand
                 cell_p->get_dof_indices(p_dofs);
 
                 // As assemble(): with rigid nodes the Schur mass is scaled by
-                // the cell's free velocity fraction.
-                double free_fraction = 1;
+                // the cell's free velocity fraction, and the pressure is
+                // smoothed where few velocity nodes are free.
                 const double h = cell_p->diameter() / std::sqrt(double(dim));
-                // and the rigid-node pressure smoothing of assemble().
-                double solid_smoothing = 0;
+                double       free_fraction = 1, solid_smoothing = 0;
                 if (!rigid_dof_grain.empty())
                   {
                     unsigned int n_rigid = 0, n_fixed = 0;
@@ -520,13 +513,8 @@ namespace softsand
                         if (smooth)
                           n_fixed += is_fixed_velocity(i);
                       }
-                    free_fraction =
-                      std::max(1e-4,
-                               std::pow(1. - double(n_rigid) / n_u_dofs, 4));
-                    if (smooth && n_rigid > 0)
-                      solid_smoothing =
-                        fluid_parameters.rigid_node_pressure_smoothing * h *
-                        h / mu * std::pow(double(n_fixed) / n_u_dofs, 4);
+                    std::tie(free_fraction, solid_smoothing) =
+                      rigid_cell_weights(n_u_dofs, n_rigid, n_fixed, h);
                   }
                 if (solid_smoothing > 0)
                   {
@@ -787,7 +775,7 @@ namespace softsand
 
         if (commutator)
           {
-            // X = B D^-1 B^T, D = diag(A) of the matrix-free operator.
+            // X = B D^-1 B^T + C, D = diag(A) of the matrix-free operator.
             data.velocity_operator->compute_inverse_diagonal(
               data.inverse_diagonal);
             TrilinosWrappers::MPI::Vector inverse(owned_partitioning[0],
@@ -801,20 +789,10 @@ namespace softsand
             divergence.mmult(product, gradient, inverse);
             gradient.clear();
             divergence.clear();
-            if (smooth)
-              {
-                TrilinosWrappers::MPI::Vector decoupled;
-                discrete_brinkman_from_product(product,
-                                               data.pressure_block,
-                                               data.discrete_brinkman,
-                                               decoupled);
-              }
-            else
-              {
-                data.discrete_brinkman.reinit(product.trilinos_matrix());
-                product.clear();
-                make_pressure_diagonal_regular(data.discrete_brinkman);
-              }
+            discrete_brinkman_from_product(product,
+                                           smooth ? &data.pressure_block :
+                                                    nullptr,
+                                           data.discrete_brinkman);
             data.discrete_brinkman_amg.initialize(data.discrete_brinkman,
                                                   pressure_laplace_amg_data());
           }

@@ -740,12 +740,8 @@ namespace softsand
                       if (smooth)
                         n_fixed += is_fixed_velocity(dof_indices[k]);
                     }
-                free_fraction =
-                  std::max(1e-4, std::pow(1. - double(n_rigid) / n_velocity, 4));
-                if (smooth && n_rigid > 0)
-                  solid_smoothing =
-                    fluid_parameters.rigid_node_pressure_smoothing * h * h /
-                    mu * std::pow(double(n_fixed) / n_velocity, 4);
+                std::tie(free_fraction, solid_smoothing) =
+                  rigid_cell_weights(n_velocity, n_rigid, n_fixed, h);
               }
 
             for (unsigned int q = 0; q < n_q; ++q)

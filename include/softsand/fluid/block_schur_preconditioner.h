@@ -23,22 +23,13 @@ namespace softsand
     TrilinosWrappers::PreconditionAMG::AdditionalData
     pressure_laplace_amg_data();
 
-    /// Make the pressure matrix @p x regular for AMG and CG: negative
-    /// diagonals (constraint rows of -C) flipped, zero diagonals (rows that
-    /// nothing couples: constrained pressures) set to the mean diagonal.
-    void
-    make_pressure_diagonal_regular(TrilinosWrappers::SparseMatrix &x);
-
     /// X = @p product - @p c, made regular: product = B D^-1 B^T and c the
     /// pressure block -C of [A B^T; B -C] (rigid-node smoothing; the
-    /// positive constraint diagonal on constrained rows). Returns in
-    /// @p decoupled_inverse 1 / c_ii on the rows that B does not reach
-    /// and c does (constrained or wholly smoothed), else 0.
+    /// positive constraint diagonal on constrained rows), or none if null.
     void
     discrete_brinkman_from_product(const TrilinosWrappers::SparseMatrix &product,
-                                   const TrilinosWrappers::SparseMatrix &c,
-                                   TrilinosWrappers::SparseMatrix       &x,
-                                   TrilinosWrappers::MPI::Vector &decoupled_inverse);
+                                   const TrilinosWrappers::SparseMatrix *c,
+                                   TrilinosWrappers::SparseMatrix       &x);
 
     /**
      * Block upper-triangular preconditioner for the saddle-point system
@@ -111,9 +102,6 @@ namespace softsand
       TrilinosWrappers::SparseMatrix             discrete_brinkman;
       /// diag(A)^-1 (least squares commutator).
       TrilinosWrappers::MPI::Vector              inverse_velocity_diagonal;
-      /// Pressure rows without divergence entries (constrained): their
-      /// 1 / diagonal of the (1,1) block, else 0 (least squares commutator).
-      TrilinosWrappers::MPI::Vector              decoupled_pressure_inverse;
       const double                               inner_tolerance;
       mutable TrilinosWrappers::MPI::Vector      tmp_u, tmp_u2, tmp_p, tmp_p2;
 

@@ -29,6 +29,8 @@
 
 #include <functional>
 #include <map>
+#include <algorithm>
+#include <cmath>
 #include <tuple>
 #include <memory>
 
@@ -354,6 +356,27 @@ namespace softsand
                (!use_matrix_free(Assembly::steady_stokes) ||
                 solver_parameters.schur ==
                   SolverParameters::Schur::least_squares_commutator);
+      }
+      /// A cell with rigid nodes, of edge @p h, with @p n_rigid rigid and
+      /// @p n_fixed imposed among its @p n_velocity velocity nodes: the
+      /// factor of its Schur mass (its free fraction^4) and the weight of
+      /// its rigid-node pressure smoothing (0 without the smoothing), as
+      /// assemble() and the matrix-free path use them.
+      std::pair<double, double>
+      rigid_cell_weights(const unsigned int n_velocity,
+                         const unsigned int n_rigid,
+                         const unsigned int n_fixed,
+                         const double       h) const
+      {
+        const double free_fraction =
+          std::max(1e-4, std::pow(1. - double(n_rigid) / n_velocity, 4));
+        const double smoothing =
+          (smooth_solid_pressure() && n_rigid > 0) ?
+            fluid_parameters.rigid_node_pressure_smoothing * h * h /
+              fluid_parameters.viscosity *
+              std::pow(double(n_fixed) / n_velocity, 4) :
+            0.;
+        return {free_fraction, smoothing};
       }
       /// Whether velocity dof @p i is imposed: rigid, Dirichlet, or hanging
       /// on rigid parents only (make_constraints() must have run).
