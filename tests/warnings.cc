@@ -1,7 +1,8 @@
 // Runs outside their model's validity or on doubtful input go on with a
 // warning (once): an entry set twice in a .prm (both lines named), a pack
 // saved unsettled (and its file's header says so), fluid/theta = 0 with the
-// penalization, a coupling step above the grains' response time. Settings
+// penalization, a coupling step above the grains' response time, a
+// creeping-flow model at pore Reynolds numbers above 1. Settings
 // a scene would ignore (restart, checkpoints outside coupled scenes) stop
 // it instead.
 
@@ -101,7 +102,25 @@ main(int argc, char **argv)
             << " times the response time" << std::endl;
   }
 
-  // 5. Settings a granular scene would ignore.
+  // 5. Steady Stokes past the sphere (d = 1 mm, U = 1e-4 m/s): Re_p 0.1 at
+  // mu = 1e-3, no warning; at mu = 1e-5 the same velocity field has 100x the
+  // pore Reynolds number, above 1: warned, naming the entry.
+  for (const double mu : {1e-3, 1e-5})
+    {
+      const auto r = run_scene<3>(
+        scene_text("drag_sphere") + "subsection fluid\n set viscosity = " +
+        std::to_string(mu) +
+        "\nend\nsubsection mesh\n set cells per diameter = 2\nend\n");
+      deallog << "steady Stokes, mu = " << mu << ": pore Reynolds max "
+              << r.at("pore_reynolds_max") << ", 95 % below "
+              << r.at("pore_reynolds_p95") << ", warned: "
+              << (warned("simulation control/mode = steady stokes neglects") ?
+                    "yes" :
+                    "no")
+              << std::endl;
+    }
+
+  // 6. Settings a granular scene would ignore.
   const std::string granular =
     "subsection simulation control\n set mode = granular\n"
     " set end time = 1e-4\n set %s\nend\n"

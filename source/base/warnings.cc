@@ -10,6 +10,7 @@ namespace softsand
     namespace
     {
       std::vector<std::string> given;
+      std::vector<std::string> keys_given;
       std::ostream            *warning_log = nullptr;
     } // namespace
 
@@ -25,6 +26,19 @@ namespace softsand
       std::cerr << "softsand: warning: " << message << std::endl;
       if (warning_log != nullptr)
         *warning_log << "softsand: warning: " << message << std::endl;
+    }
+
+
+    void
+    warn_once(const std::string &key,
+              const std::string &message,
+              const MPI_Comm     comm)
+    {
+      if (std::find(keys_given.begin(), keys_given.end(), key) !=
+          keys_given.end())
+        return;
+      keys_given.push_back(key);
+      warn(message, comm);
     }
 
 

@@ -1,8 +1,10 @@
 #include <softsand/drivers/fluid_columns.h>
 #include <softsand/postprocess/columns/error_columns.h>
+#include <softsand/postprocess/columns/flow_regime_columns.h>
 #include <softsand/postprocess/columns/force_columns.h>
 #include <softsand/postprocess/columns/fracture_area_columns.h>
 #include <softsand/postprocess/columns/permeability_columns.h>
+#include <softsand/postprocess/columns/pore_space_columns.h>
 #include <softsand/postprocess/columns/porosity_columns.h>
 #include <softsand/postprocess/columns/radial_flow_columns.h>
 #include <softsand/postprocess/columns/solver_columns.h>
@@ -37,6 +39,25 @@ namespace softsand
         p.boundary_conditions.face_area(2 * axis)));
       columns.emplace_back(
         std::make_unique<PorosityColumns<dim>>(axis, pp.pressure_planes));
+      // The entry that chose a model without inertia, named by the
+      // flow-regime warning.
+      using Mode = core::SimulationControl::Mode;
+      std::string creeping_model, inertial_model;
+      if (p.simulation_control.mode == Mode::steady_stokes)
+        {
+          creeping_model = "simulation control/mode = steady stokes";
+          inertial_model = "simulation control/mode = steady navier stokes";
+        }
+      else if (p.simulation_control.mode == Mode::coupled &&
+               p.coupling.fluid_model ==
+                 coupling::CouplingParameters::FluidModel::quasi_steady)
+        {
+          creeping_model = "coupling/fluid model = quasi-steady";
+          inertial_model = "coupling/fluid model = transient";
+        }
+      columns.emplace_back(std::make_unique<PoreSpaceColumns<dim>>());
+      columns.emplace_back(std::make_unique<FlowRegimeColumns<dim>>(
+        p.fluid.density, mu, creeping_model, inertial_model));
       if (!pp.exact_velocity.empty())
         columns.emplace_back(std::make_unique<ErrorColumns<dim>>(
           pp.exact_velocity, pp.exact_pressure));
@@ -55,7 +76,7 @@ namespace softsand
                 thickness += std::abs(extent[d] * inlet.axis[d]);
             }
           columns.emplace_back(std::make_unique<RadialFlowColumns<dim>>(
-            p.radial_flow, inlet, thickness, mu));
+            p.radial_flow, inlet, thickness, p.fluid.density, mu));
         }
       // Parameters<dim> allows the fracture map in 3D only.
       if constexpr (dim == 3)

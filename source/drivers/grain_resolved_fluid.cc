@@ -215,6 +215,24 @@ namespace softsand
             coupling::ForceModel::stress_divergence,
             mpi_communicator);
         }
+      pores.reset();
+      if (!grain_list.empty())
+        {
+          // The paper's cell-average penalization closes a cell by any
+          // covered part; the other rules by most of it.
+          postprocess::OpenCellRule rule;
+          rule.brinkman =
+            parameters.fluid.solid_model ==
+              fluid::FluidParameters::SolidModel::penalization &&
+            parameters.void_fraction.model ==
+              coupling::VoidFractionParameters::Model::cell_average;
+          rule.density   = parameters.fluid.density;
+          rule.viscosity = parameters.fluid.viscosity;
+          rule.theta     = parameters.fluid.theta;
+          rule.time_step = parameters.simulation_control.time_step;
+          pores          = std::make_unique<postprocess::PoreConnectivity>(
+            mesh, *solids, parameters.boundary_conditions, rule);
+        }
       const postprocess::FluidSnapshot<dim> snapshot{mesh,
                                                      *navier_stokes,
                                                      grain_list,
@@ -223,7 +241,8 @@ namespace softsand
                                                      eq7_forces,
                                                      step,
                                                      time,
-                                                     write_files};
+                                                     write_files,
+                                                     pores.get()};
       postprocess::Columns row;
       for (const auto &source : columns)
         source->add_columns(snapshot, row);
@@ -252,10 +271,24 @@ namespace softsand
             void_fraction(cell->active_cell_index()) =
               1. - solids->cell_solid_fraction(*cell, g);
           }
+      // 0: closed (grain), 1: open and joined to a reservoir, 2: a sealed
+      // pocket.
+      Vector<float> pore_space;
+      if (pores)
+        {
+          pore_space.reinit(mesh.n_active_cells());
+          for (const auto &cell : mesh.active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                const unsigned int i = cell->active_cell_index();
+                pore_space(i) = pores->connected(i) ? 1 : pores->sealed(i) ? 2 : 0;
+              }
+        }
       field_output->write(navier_stokes->get_dof_handler(),
                           navier_stokes->get_solution(),
                           void_fraction,
-                          time);
+                          time,
+                          pores ? &pore_space : nullptr);
     }
 
 

@@ -27,7 +27,8 @@ namespace softsand
       const DoFHandler<dim>                    &dof_handler,
       const TrilinosWrappers::MPI::BlockVector &solution,
       const Vector<float>                      &cell_void_fraction,
-      const double                              time)
+      const double                              time,
+      const Vector<float>                      *pore_space)
     {
       const MPI_Comm comm = dof_handler.get_communicator();
       std::vector<std::string> names(dim, "velocity");
@@ -44,6 +45,8 @@ namespace softsand
                                DataOut<dim>::type_dof_data,
                                interpretation);
       data_out.add_data_vector(cell_void_fraction, "void_fraction");
+      if (pore_space != nullptr)
+        data_out.add_data_vector(*pore_space, "pore_space");
 
       const auto &tria = dof_handler.get_triangulation();
       Vector<float> level(tria.n_active_cells()), subdomain(level.size());

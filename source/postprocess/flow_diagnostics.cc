@@ -7,6 +7,10 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
 namespace softsand
 {
   namespace postprocess
@@ -273,6 +277,69 @@ namespace softsand
 
 
     template <int dim>
+    PoreReynolds
+    compute_pore_reynolds(const DoFHandler<dim>                &dof_handler,
+                          const BlockVector                    &solution,
+                          const coupling::GrainSolidField<dim> &solids,
+                          const double                          density,
+                          const double                          viscosity,
+                          const double                          diameter)
+    {
+      // Volume of fluid per bin of log10(Re), 1e-15 to 1e10; the first bin
+      // also takes Re = 0 and below, the last everything above.
+      constexpr int    bins_per_decade = 50;
+      constexpr double lowest_decade   = -15;
+      constexpr int    n_bins          = 25 * bins_per_decade;
+      std::vector<double> volume(n_bins, 0.);
+      double              max_re = 0;
+
+      const auto       &fe = dof_handler.get_fe();
+      const QGauss<dim> quadrature(2);
+      FEValues<dim>     fe_values(fe, quadrature, update_values | update_JxW_values);
+      const FEValuesExtractors::Vector velocities(0);
+      std::vector<Tensor<1, dim>>      u(quadrature.size());
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            int grain;
+            if (solids.cell_solid_fraction(*cell, grain) >= 0.1)
+              continue;
+            fe_values.reinit(cell);
+            fe_values[velocities].get_function_values(solution, u);
+            double speed = 0, v = 0;
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                speed += u[q].norm() * fe_values.JxW(q);
+                v += fe_values.JxW(q);
+              }
+            const double re = density * (speed / v) * diameter / viscosity;
+            max_re          = std::max(max_re, re);
+            const double position =
+              re > 0 ? (std::log10(re) - lowest_decade) * bins_per_decade : 0;
+            volume[std::clamp(static_cast<int>(position), 0, n_bins - 1)] += v;
+          }
+      Utilities::MPI::sum(volume, dof_handler.get_communicator(), volume);
+      PoreReynolds result;
+      result.max = Utilities::MPI::max(max_re, dof_handler.get_communicator());
+      const double total = std::accumulate(volume.begin(), volume.end(), 0.);
+      double       below = 0;
+      for (int b = 0; b < n_bins; ++b)
+        {
+          below += volume[b];
+          if (below >= 0.95 * total)
+            {
+              // The bin's upper edge, never above the largest value.
+              result.p95 = std::min(
+                result.max,
+                std::pow(10., lowest_decade + (b + 1.) / bins_per_decade));
+              break;
+            }
+        }
+      return result;
+    }
+
+
+    template <int dim>
     ErrorNorms
     compute_errors(const DoFHandler<dim> &dof_handler,
                    const BlockVector     &solution,
@@ -364,6 +431,13 @@ namespace softsand
                                      const unsigned int,                    \
                                      const double,                          \
                                      const double);                         \
+  template PoreReynolds compute_pore_reynolds(                              \
+    const DoFHandler<dim> &,                                                 \
+    const BlockVector &,                                                     \
+    const coupling::GrainSolidField<dim> &,                                  \
+    const double,                                                            \
+    const double,                                                            \
+    const double);                                                           \
   template ErrorNorms compute_errors(const DoFHandler<dim> &,               \
                                      const BlockVector &,                   \
                                      const Function<dim> &);

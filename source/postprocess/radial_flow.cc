@@ -88,7 +88,8 @@ namespace softsand
                         const fluid::SolidField<dim>             *solids,
                         const fluid::PressureRegion<dim>         &region,
                         const std::vector<double>                &radii,
-                        const double                              half_width)
+                        const double                              half_width,
+                        const PoreConnectivity                   *pores)
     {
       RadialFlow         result;
       const unsigned int n = radii.size();
@@ -106,8 +107,9 @@ namespace softsand
       std::vector<double>              p(n_q), vf(n_q, 1.);
       std::vector<Tensor<1, dim>>      u(n_q), u_s(n_q);
       std::vector<int>                 index(n_q);
-      // Per ring: fluid-weighted pressure and weight; per annulus: flux.
-      std::vector<double> sums(3 * n, 0.);
+      // Per ring: fluid-weighted pressure and weight; per annulus: flux;
+      // per ring: pressure and weight over the connected pore space.
+      std::vector<double> sums(5 * n, 0.);
       const double        reach = radii.back() + half_width;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -118,6 +120,8 @@ namespace softsand
             if (rc + half_diagonal < radii[0] - half_width ||
                 rc - half_diagonal > reach)
               continue;
+            const bool connected =
+              pores == nullptr || pores->connected(cell->active_cell_index());
             fe_values.reinit(cell);
             fe_values[pressure].get_function_values(solution, p);
             fe_values[velocities].get_function_values(solution, u);
@@ -141,6 +145,11 @@ namespace softsand
                       {
                         sums[k] += vf[q] * p[q] * JxW;
                         sums[n + k] += vf[q] * JxW;
+                        if (connected)
+                          {
+                            sums[3 * n + k] += vf[q] * p[q] * JxW;
+                            sums[4 * n + k] += vf[q] * JxW;
+                          }
                       }
                     if (k + 1 < n && r >= radii[k] && r < radii[k + 1])
                       sums[2 * n + k] += (u[q] * e) * JxW;
@@ -157,7 +166,9 @@ namespace softsand
                                  Utilities::to_string(radii[k]) +
                                  " m crosses no fluid; choose radii inside "
                                  "the domain."));
-          result.ring_pressure.push_back(sums[k] / sums[n + k]);
+          result.ring_pressure.push_back(sums[4 * n + k] > 0 ?
+                                           sums[3 * n + k] / sums[4 * n + k] :
+                                           sums[k] / sums[n + k]);
           if (k + 1 < n)
             {
               result.flow_rate.push_back(sums[2 * n + k] /
@@ -175,13 +186,15 @@ namespace softsand
                         const fluid::SolidField<2> *,
                         const fluid::PressureRegion<2> &,
                         const std::vector<double> &,
-                        const double);
+                        const double,
+                        const PoreConnectivity *);
     template RadialFlow
     compute_radial_flow(const DoFHandler<3> &,
                         const TrilinosWrappers::MPI::BlockVector &,
                         const fluid::SolidField<3> *,
                         const fluid::PressureRegion<3> &,
                         const std::vector<double> &,
-                        const double);
+                        const double,
+                        const PoreConnectivity *);
   } // namespace postprocess
 } // namespace softsand

@@ -19,6 +19,13 @@ namespace softsand
     void
     warn(const std::string &message, const MPI_Comm comm);
 
+    /// As warn(), once per @p key: for messages that carry the values at
+    /// the moment they are first met.
+    void
+    warn_once(const std::string &key,
+              const std::string &message,
+              const MPI_Comm     comm);
+
     /// Warnings also go to @p log (nullptr: none), e.g. a run's log.txt.
     void
     set_warning_log(std::ostream *log);

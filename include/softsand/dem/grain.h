@@ -41,6 +41,19 @@ namespace softsand
     };
 
 
+    /// The grains' mean diameter (0 without grains): the length of the
+    /// pore Reynolds number.
+    template <int dim>
+    inline double
+    mean_diameter(const std::vector<Grain<dim>> &grains)
+    {
+      double sum = 0;
+      for (const auto &grain : grains)
+        sum += grain.diameter();
+      return grains.empty() ? 0. : sum / grains.size();
+    }
+
+
     template <int dim>
     inline Tensor<1, dim>
     Grain<dim>::rigid_velocity(const Point<dim> &x) const

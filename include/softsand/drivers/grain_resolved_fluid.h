@@ -165,6 +165,8 @@ namespace softsand
       const postprocess::FluidColumnList<dim>             columns;
       coupling::GrainForces<dim>                          reaction_forces;
       coupling::GrainForces<dim>                          eq7_forces;
+      /// The open pore space of the last postprocessed solution.
+      std::unique_ptr<postprocess::PoreConnectivity>      pores;
       std::vector<Point<dim>>                             adaptation_centers;
     };
   } // namespace drivers

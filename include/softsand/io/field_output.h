@@ -43,7 +43,8 @@ namespace softsand
       write(const DoFHandler<dim>                    &dof_handler,
             const TrilinosWrappers::MPI::BlockVector &solution,
             const Vector<float>                      &cell_void_fraction,
-            const double                              time);
+            const double                              time,
+            const Vector<float> *pore_space = nullptr);
 
     private:
       std::string directory;

@@ -10,6 +10,8 @@
 #include <softsand/fluid/pressure_region.h>
 #include <softsand/fluid/solid_field.h>
 
+#include <softsand/postprocess/pore_connectivity.h>
+
 #include <vector>
 
 namespace softsand
@@ -69,7 +71,9 @@ namespace softsand
      * Ring pressures and flow rates of @p solution around the axis of
      * @p axis_region (its centre and axis; usually the inlet). The ring
      * pressure is the mean over the fluid (weighted by the void fraction of
-     * @p solids, if given) within @p half_width of the radius; the flow
+     * @p solids, if given) within @p half_width of the radius, over the
+     * connected pore space of @p pores if given (sealed pockets float; a
+     * ring that meets no connected cell takes all its fluid); the flow
      * rate through radius r is int u . e_r dA, here averaged over the
      * annulus between two rings as a volume integral (grains included:
      * they carry their own velocity).
@@ -81,7 +85,8 @@ namespace softsand
                         const fluid::SolidField<dim>                 *solids,
                         const fluid::PressureRegion<dim>             &axis_region,
                         const std::vector<double>                    &radii,
-                        const double                                  half_width);
+                        const double                                  half_width,
+                        const PoreConnectivity *pores = nullptr);
   } // namespace postprocess
 } // namespace softsand
 

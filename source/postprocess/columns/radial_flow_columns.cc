@@ -1,6 +1,8 @@
 #include <softsand/coupling/grain_mesh_refinement.h>
 #include <softsand/postprocess/columns/radial_flow_columns.h>
 
+#include <cmath>
+
 namespace softsand
 {
   namespace postprocess
@@ -10,10 +12,12 @@ namespace softsand
       const RadialFlowParameters       &parameters,
       const fluid::PressureRegion<dim> &inlet,
       const double                      thickness,
+      const double                      density,
       const double                      viscosity)
       : parameters(parameters)
       , inlet(inlet)
       , thickness(thickness)
+      , density(density)
       , viscosity(viscosity)
     {}
 
@@ -33,7 +37,8 @@ namespace softsand
                                                                  &s.solid_field,
                                               inlet,
                                               radii,
-                                              half_width);
+                                              half_width,
+                                              s.pores);
       for (unsigned int k = 0; k < radii.size(); ++k)
         {
           row["ring_pressure_" + std::to_string(k)] = flow.ring_pressure[k];
@@ -49,6 +54,13 @@ namespace softsand
                                                      flow.total_flow_rate,
                                                      viscosity,
                                                      thickness);
+      // The ring's circumference (dim = 2: the flow rate is per unit depth).
+      const double superficial_velocity =
+        flow.total_flow_rate / (2 * numbers::PI * radii.front() * thickness);
+      row["radial_superficial_velocity"] = superficial_velocity;
+      if (!s.grains.empty())
+        row["radial_pore_reynolds"] = density * std::abs(superficial_velocity) *
+                                      dem::mean_diameter(s.grains) / viscosity;
     }
 
     template class RadialFlowColumns<2>;

@@ -7,6 +7,7 @@
 #include <softsand/coupling/grain_solid_field.h>
 #include <softsand/dem/grain.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
+#include <softsand/postprocess/pore_connectivity.h>
 
 #include <map>
 #include <memory>
@@ -38,6 +39,9 @@ namespace softsand
       double                            time;
       /// Field output is due at this row (sources with files write them).
       bool write_fields;
+      /// The open cells and the pockets among them (nullptr without
+      /// grains).
+      const PoreConnectivity *pores;
     };
 
     /**

@@ -12,7 +12,9 @@ namespace softsand
     /**
      * Radial cells (the Hele-Shaw injection, the paper's section 4): the
      * mean pressure on rings around the inlet, the radial flow rate and the
-     * radial Darcy permeability between rings and over all of them.
+     * radial Darcy permeability between rings and over all of them; the
+     * superficial velocity Q / (2 pi r h) at the innermost ring and its pore
+     * Reynolds number rho q d / mu (d the grains' mean diameter).
      */
     template <int dim>
     class RadialFlowColumns : public FluidColumnSource<dim>
@@ -22,6 +24,7 @@ namespace softsand
       RadialFlowColumns(const RadialFlowParameters          &parameters,
                         const fluid::PressureRegion<dim> &inlet,
                         const double                      thickness,
+                        const double                      density,
                         const double                      viscosity);
 
       void
@@ -31,7 +34,7 @@ namespace softsand
     private:
       const RadialFlowParameters       parameters;
       const fluid::PressureRegion<dim> inlet;
-      const double                     thickness, viscosity;
+      const double                     thickness, density, viscosity;
     };
   } // namespace postprocess
 } // namespace softsand
