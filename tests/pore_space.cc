@@ -61,15 +61,6 @@ subsection output
 end
 )";
   }
-
-  bool
-  warned(const std::string &text)
-  {
-    for (const auto &w : softsand::base::warnings_given())
-      if (w.find(text) != std::string::npos)
-        return true;
-    return false;
-  }
 } // namespace
 
 

@@ -5,6 +5,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <softsand/base/warnings.h>
 #include <softsand/core/parameters.h>
 #include <softsand/drivers/granular_scene.h>
 #include <softsand/drivers/run_scene.h>
@@ -17,6 +18,16 @@
 #include <map>
 #include <sstream>
 #include <string>
+
+/// Whether a warning containing @p text was given in this process.
+inline bool
+warned(const std::string &text)
+{
+  for (const auto &w : softsand::base::warnings_given())
+    if (w.find(text) != std::string::npos)
+      return true;
+  return false;
+}
 
 /// The scene parameters/NAME.prm of the repository with its output sent to
 /// ./results, without VTU files and quiet; later entries may override it.

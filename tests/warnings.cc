@@ -19,16 +19,6 @@
 
 namespace
 {
-  /// Whether a warning containing @p text was given.
-  bool
-  warned(const std::string &text)
-  {
-    for (const auto &w : softsand::base::warnings_given())
-      if (w.find(text) != std::string::npos)
-        return true;
-    return false;
-  }
-
   /// The message of the error @p text stops with, or "accepted".
   std::string
   stops(const std::string &text)
