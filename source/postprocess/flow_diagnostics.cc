@@ -15,6 +15,13 @@ namespace softsand
 {
   namespace postprocess
   {
+    namespace
+    {
+      /// The paper's fluid cells: cell void fraction above this.
+      constexpr double fluid_cell_void_fraction = 0.9;
+    } // namespace
+
+
     void
     PostprocessingParameters::declare_parameters(ParameterHandler &prm)
     {
@@ -264,7 +271,7 @@ namespace softsand
             int          grain;
             const double vf = 1. - solids.cell_solid_fraction(*cell, grain);
             const double v  = inside * cell->measure();
-            if (vf > 0.9)
+            if (vf > fluid_cell_void_fraction)
               sums[0] += v;
             sums[1] += vf * v;
             sums[2] += v;
@@ -302,7 +309,8 @@ namespace softsand
         if (cell->is_locally_owned())
           {
             int grain;
-            if (solids.cell_solid_fraction(*cell, grain) >= 0.1)
+            if (1. - solids.cell_solid_fraction(*cell, grain) <=
+                fluid_cell_void_fraction)
               continue;
             fe_values.reinit(cell);
             fe_values[velocities].get_function_values(solution, u);

@@ -21,27 +21,28 @@ namespace softsand
                 const std::uint8_t                    outlet,
                 const std::uint8_t                    other)
       {
-        using BC = fluid::BoundaryConditions<dim>;
+        using Type = typename fluid::BoundaryConditions<dim>::Type;
+        // A face that imposes a flow through it (walls and symmetry do not).
+        const auto imposes_flow = [&bc](const unsigned int f) {
+          const Type t = bc.face(f).type;
+          return t == Type::velocity || t == Type::flow_rate ||
+                 t == Type::function;
+        };
         std::array<std::uint8_t, 2 * dim> ends{};
         bool   velocity_inlet = false;
         double highest        = -std::numeric_limits<double>::max();
         for (unsigned int f = 0; f < 2 * dim; ++f)
           {
-            const auto t = bc.face(f).type;
-            if (t == BC::Type::velocity || t == BC::Type::flow_rate ||
-                t == BC::Type::function)
-              velocity_inlet = true;
-            if (t == BC::Type::pressure)
+            velocity_inlet = velocity_inlet || imposes_flow(f);
+            if (bc.face(f).type == Type::pressure)
               highest = std::max(highest, bc.face(f).pressure);
           }
         const bool region_inlet = bc.inlet_region().enabled();
         for (unsigned int f = 0; f < 2 * dim; ++f)
           {
-            const auto t = bc.face(f).type;
-            if (t == BC::Type::velocity || t == BC::Type::flow_rate ||
-                t == BC::Type::function)
+            if (imposes_flow(f))
               ends[f] = region_inlet ? other : inlet;
-            else if (t == BC::Type::pressure)
+            else if (bc.face(f).type == Type::pressure)
               ends[f] = (!region_inlet && !velocity_inlet &&
                          bc.face(f).pressure == highest) ?
                           inlet :
