@@ -2,7 +2,9 @@
 // warning (once): an entry set twice in a .prm (both lines named), a pack
 // saved unsettled (and its file's header says so), fluid/theta = 0 with the
 // penalization, a coupling step above the grains' response time, a
-// creeping-flow model at pore Reynolds numbers above 1. Settings
+// creeping-flow model at pore Reynolds numbers above 1, a fluid solve
+// retried with a stronger velocity preconditioner, freed contact cells
+// that hand most of a pack to the fluid. Settings
 // a scene would ignore (restart, checkpoints outside coupled scenes) stop
 // it instead.
 
@@ -12,6 +14,7 @@
 #include <softsand/base/warnings.h>
 #include <softsand/core/parameters.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "test_scenes.h"
@@ -110,7 +113,60 @@ main(int argc, char **argv)
               << std::endl;
     }
 
-  // 6. Settings a granular scene would ignore.
+  // 6. A fluid solve that does not converge (at most 1 FGMRES iteration to
+  // 1e-12): retried with twice, then four times the velocity AMG sweeps,
+  // each with a warning; then it stops, naming where the residual is
+  // largest.
+  {
+    std::string error = "no error (wrong)";
+    try
+      {
+        run_scene<3>(scene_text("drag_sphere") +
+                     "subsection mesh\n set cells per diameter = 2\nend\n"
+                     "subsection fluid solver\n"
+                     " set max linear iterations = 1\n"
+                     " set linear tolerance = 1e-12\nend\n");
+      }
+    catch (const std::exception &e)
+      {
+        error = softsand::base::error_message(e);
+      }
+    deallog << "failed solve: retried with 8 sweeps: "
+            << (warned("with 8 velocity AMG sweeps instead of 4") ? "yes" :
+                                                                     "no")
+            << ", with 16: "
+            << (warned("with 16 velocity AMG sweeps instead of 8") ? "yes" :
+                                                                      "no")
+            << ", then stopped: "
+            << error.substr(0, error.find(" iterations")) << ", "
+            << (error.find("Largest residual: momentum rows") !=
+                    std::string::npos ?
+                  "largest residual located" :
+                  "largest residual not located")
+            << std::endl;
+  }
+
+  // 7. Freed contact cells on a coarse mesh: the small Hele-Shaw pack at 2
+  // cells per mean diameter, one coupling step. The transient model frees
+  // them (automatic) and they hold nearly all of the grains' volume: warned.
+  // The quasi-steady model keeps them: nothing freed, no warning.
+  for (const std::string model : {"quasi-steady", "transient"})
+    {
+      const auto r = run_scene<3>(
+        scene_text("hele_shaw_small") +
+        "subsection simulation control\n set max time steps = 1\n"
+        " set time step = 1e-4\nend\n"
+        "subsection coupling\n set fluid model = " + model + "\nend\n"
+        "subsection grains\n set file = " + std::string(SOURCE_DIR) +
+        "/../parameters/packs/hele_shaw_small.txt\nend\n");
+      deallog << "small Hele-Shaw, " << model << ": freed solid fraction "
+              << std::round(1000 * r.at("freed_solid_fraction")) / 1000
+              << ", warned: "
+              << (warned("the freed contact cells") ? "yes" : "no")
+              << std::endl;
+    }
+
+  // 8. Settings a granular scene would ignore.
   const std::string granular =
     "subsection simulation control\n set mode = granular\n"
     " set end time = 1e-4\n set %s\nend\n"

@@ -219,7 +219,10 @@ namespace softsand
                         "4",
                         Patterns::Integer(1, 10),
                         "linear solver = matrix based: smoother sweeps of the "
-                        "velocity-block AMG.");
+                        "velocity-block AMG. A solve that fails with a new "
+                        "preconditioner is retried with twice the sweeps (at "
+                        "most four times this value), kept for the rest of "
+                        "the run, with a warning.");
       prm.declare_entry(
         "velocity amg smoother",
         "chebyshev",

@@ -1,6 +1,7 @@
 #include <softsand/fluid/block_schur_preconditioner.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 #include <softsand/base/parameter_tools.h>
+#include <softsand/base/warnings.h>
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -19,6 +20,8 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <algorithm>
+#include <array>
+#include <sstream>
 #include <set>
 
 namespace softsand
@@ -160,6 +163,39 @@ namespace softsand
           return true;
       return solid_field->n_solids_near(cell, cell.minimum_vertex_distance()) >=
              2;
+    }
+
+
+    template <int dim>
+    double
+    PenalizedNavierStokes<dim>::freed_solid_fraction() const
+    {
+      if (solid_field == nullptr)
+        return 0.;
+      const QGauss<dim>           quadrature(fe.degree + 1);
+      FEValues<dim>               fe_values(fe,
+                              quadrature,
+                              update_quadrature_points | update_JxW_values);
+      std::vector<double>         vf;
+      std::vector<Tensor<1, dim>> u_s;
+      std::vector<int>            grain;
+      double                      solid = 0, freed = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            solid_field->evaluate(
+              *cell, fe_values.get_quadrature_points(), vf, u_s, grain);
+            double cell_solid = 0;
+            for (const auto q : fe_values.quadrature_point_indices())
+              cell_solid += (1. - vf[q]) * fe_values.JxW(q);
+            solid += cell_solid;
+            if (cell_solid > 0 && is_free_contact_cell(*cell))
+              freed += cell_solid;
+          }
+      solid = Utilities::MPI::sum(solid, mpi_communicator);
+      freed = Utilities::MPI::sum(freed, mpi_communicator);
+      return solid > 0 ? freed / solid : 0.;
     }
 
 
@@ -986,7 +1022,7 @@ namespace softsand
           nullptr,
         constant_modes,
         convection,
-        solver_parameters.velocity_amg_sweeps,
+        std::max(velocity_amg_sweeps, solver_parameters.velocity_amg_sweeps),
         solver_parameters.velocity_amg_smoother ==
             SolverParameters::AmgSmoother::chebyshev ?
           "Chebyshev" :
@@ -1060,14 +1096,19 @@ namespace softsand
       // A kept preconditioner may take 'rebuild factor' times the
       // iterations of its first solve (+ 5); where that does not suffice,
       // a new one solves again from the same start with the whole budget.
+      // Where a new one fails too, the velocity V-cycle is too weak for this
+      // matrix (late steps of a transient pack, whose grains moved: the
+      // small Hele-Shaw cell at 8.1 ms stalled at 2.7e-4 with 4 sweeps and
+      // converged in 493 iterations with 8): double its sweeps, twice at most.
       if (kept)
         control.set_max_steps(std::min<unsigned int>(
           solver_parameters.max_linear_iterations,
           solver_parameters.preconditioner_rebuild_factor *
               preconditioner_iterations +
             5));
-      const BlockVector start = x;
-      for (bool may_rebuild = kept;; may_rebuild = false)
+      const BlockVector  start = x;
+      const unsigned int max_sweeps = 4 * solver_parameters.velocity_amg_sweeps;
+      for (bool fresh = !kept;;)
         try
           {
             if (rhs_norm > 0)
@@ -1076,14 +1117,33 @@ namespace softsand
           }
         catch (const SolverControl::NoConvergence &e)
           {
-            AssertThrow(may_rebuild,
+            const unsigned int sweeps =
+              std::max(velocity_amg_sweeps,
+                       solver_parameters.velocity_amg_sweeps);
+            AssertThrow(!fresh || 2 * sweeps <= max_sweeps,
                         ExcMessage(
-                          linear_solver_failure(e, control.tolerance())));
-            pcout << "      kept preconditioner: no convergence in "
-                  << e.last_step << " iterations, rebuilt" << std::endl;
+                          linear_solver_failure(e, control.tolerance()) +
+                          locate_largest_residual(x)));
+            if (fresh)
+              {
+                velocity_amg_sweeps = 2 * sweeps;
+                base::warn("the fluid solver did not converge in " +
+                             std::to_string(e.last_step) +
+                             " iterations; retried, and goes on, with " +
+                             std::to_string(velocity_amg_sweeps) +
+                             " velocity AMG sweeps instead of " +
+                             std::to_string(sweeps) +
+                             " ('fluid solver/velocity amg sweeps'): "
+                             "slower steps",
+                           mpi_communicator);
+              }
+            else
+              pcout << "      kept preconditioner: no convergence in "
+                    << e.last_step << " iterations, rebuilt" << std::endl;
             build_preconditioner(convection);
             control.set_max_steps(solver_parameters.max_linear_iterations);
-            x = start;
+            x     = start;
+            fresh = true;
           }
       const unsigned int iterations = rhs_norm > 0 ? control.last_step() : 0;
       // The first solve with a preconditioner sets its reference count.
@@ -1118,6 +1178,81 @@ namespace softsand
              Utilities::to_string(tolerance) +
              "). Raise 'fluid solver/max linear iterations' or check the "
              "scene (time step, theta, mesh).";
+    }
+
+
+    template <int dim>
+    std::string
+    PenalizedNavierStokes<dim>::locate_largest_residual(
+      const BlockVector &x) const
+    {
+      BlockVector residual(owned_partitioning, mpi_communicator);
+      system_matrix.vmult(residual, x);
+      residual.sadd(-1., 1., system_rhs);
+
+      // Per block: the largest |r_i| over the owned rows, then its support
+      // point and whether the row is imposed (rigid or boundary).
+      std::array<double, 2>                  largest = {{-1., -1.}};
+      std::array<types::global_dof_index, 2> row     = {{0, 0}};
+      for (unsigned int b = 0; b < 2; ++b)
+        for (const auto i : owned_partitioning[b])
+          {
+            // Block-local index i; the combined handler numbers the
+            // pressure after all velocities.
+            const double r = std::abs(residual.block(b)(i));
+            if (r > largest[b])
+              {
+                largest[b] = r;
+                row[b]     = b == 0 ? i : i + owned_partitioning[0].size();
+              }
+          }
+
+      const Quadrature<dim> support(fe.get_unit_support_points());
+      FEValues<dim> fe_values(fe, support, update_quadrature_points);
+      std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+      std::array<Point<dim>, 2> where;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(dof_indices);
+            for (unsigned int k = 0; k < dof_indices.size(); ++k)
+              for (unsigned int b = 0; b < 2; ++b)
+                if (largest[b] >= 0 && dof_indices[k] == row[b])
+                  {
+                    fe_values.reinit(cell);
+                    where[b] = fe_values.quadrature_point(k);
+                  }
+          }
+
+      std::string text;
+      const char *rows[2] = {"momentum", "continuity"};
+      for (unsigned int b = 0; b < 2; ++b)
+        {
+          // The rank holding the largest value reports it.
+          const double global =
+            Utilities::MPI::max(largest[b], mpi_communicator);
+          Point<dim> point;
+          int        imposed = 0;
+          if (largest[b] == global)
+            {
+              point   = where[b];
+              imposed = constraints.is_constrained(row[b]) ? 1 : 0;
+            }
+          // Only one rank contributes a nonzero point (ties: the sum of
+          // identical values is rare and only blurs the location).
+          const unsigned int owner_count = Utilities::MPI::sum(
+            largest[b] == global ? 1u : 0u, mpi_communicator);
+          for (unsigned int d = 0; d < dim; ++d)
+            point[d] = Utilities::MPI::sum(point[d], mpi_communicator) /
+                       owner_count;
+          imposed = Utilities::MPI::max(imposed, mpi_communicator);
+          std::ostringstream out;
+          out << (b == 0 ? " Largest residual: " : "; ") << rows[b]
+              << " rows " << global << " at (" << point << ") m"
+              << (imposed ? " (an imposed row)" : "");
+          text += out.str();
+        }
+      return text + ".";
     }
 
 

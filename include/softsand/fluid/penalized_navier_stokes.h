@@ -213,6 +213,11 @@ namespace softsand
       {
         return statistics;
       }
+      /// The part of the grains' volume (as the mesh sees it) that the
+      /// freed contact cells give to the fluid (FluidParameters::
+      /// free_contact_cells); 0 when no cell is freed.
+      double
+      freed_solid_fraction() const;
       types::global_dof_index
       n_dofs() const
       {
@@ -401,6 +406,11 @@ namespace softsand
       static std::string
       linear_solver_failure(const SolverControl::NoConvergence &e,
                             const double                       tolerance);
+      /// Where the matrix-based system's residual at @p x is largest, in
+      /// the momentum and in the continuity rows, for the failure message:
+      /// a stalled solve is usually one place (a pocket between grains).
+      std::string
+      locate_largest_residual(const BlockVector &x) const;
       /// Shared tail of both linear solves: distribute the constraints into
       /// @p x, zero the mean pressure where no face fixes it, store it as
       /// the solution, check it is finite and count @p iterations.
@@ -474,6 +484,10 @@ namespace softsand
       std::unique_ptr<BlockSchurPreconditioner> preconditioner;
       bool                                      preconditioner_convection = false;
       unsigned int                              preconditioner_iterations = 0;
+      /// AMG sweeps of the velocity block in use: 'velocity amg sweeps',
+      /// doubled (at most twice) for the rest of the run each time a solve
+      /// with a new preconditioner fails (solve_linear()).
+      unsigned int velocity_amg_sweeps = 0;
 
       const SolidField<dim>          *solid_field = nullptr;
       bool                             moving_solids = false;
