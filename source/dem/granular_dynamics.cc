@@ -674,7 +674,7 @@ namespace softsand
                   if (j < n_local)
                     damping_kick[j] -= kick;
                 }
-              h = ContactHistory();
+              h.clear();
               continue;
             }
           const double       dist  = std::sqrt(d2);
@@ -733,7 +733,7 @@ namespace softsand
             {
               if (h.damping_potential > 0)
                 damping_kick[i] += law.separation_impulse(h, dt) * n;
-              h = ContactHistory();
+              h.clear();
               continue;
             }
           const double       li    = radius[i] - 0.5 * delta;

@@ -23,6 +23,22 @@ namespace softsand
       Tensor<1, 3> rolling_torque;
       double       damping_potential = 0;
       double       damping_force     = 0;
+
+      /// Forget the contact. Most neighbour pairs are apart and already
+      /// clear: they are only read, not written (a whole-struct assignment
+      /// through a temporary was 17 % of the force loop of a pour).
+      void
+      clear()
+      {
+        if (damping_potential != 0 || damping_force != 0 ||
+            shear.norm_square() != 0 || rolling_torque.norm_square() != 0)
+          {
+            shear             = Tensor<1, 3>();
+            rolling_torque    = Tensor<1, 3>();
+            damping_potential = 0;
+            damping_force     = 0;
+          }
+      }
     };
 
     /// Rolling resistance: none, constant directional torque (CDT), or the
