@@ -25,25 +25,14 @@ from paraview import simple
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pgm_to_png import read_pgm  # noqa: E402
 
-def read_pgm(path):
+
+def read_fracture_map(path):
     """The fracture map as an array [row j from the bottom, column i]."""
-    with open(path, 'rb') as f:
-        data = f.read()
-    fields, pos = [], 0
-    while len(fields) < 4:
-        while data[pos:pos + 1].isspace():
-            pos += 1
-        end = pos
-        while not data[end:end + 1].isspace():
-            end += 1
-        fields.append(data[pos:end])
-        pos = end
-    pos += 1
-    if fields[0] != b'P5':
-        raise SystemExit('%s: not a binary PGM (P5) file' % path)
-    w, h = int(fields[1]), int(fields[2])
-    rows = np.frombuffer(data[pos:pos + w * h], dtype=np.uint8).reshape(h, w)
+    w, h, data = read_pgm(path)
+    rows = np.frombuffer(data, dtype=np.uint8).reshape(h, w)
     return rows[::-1, :]  # the file's first row is the top (largest y)
 
 
@@ -122,7 +111,7 @@ def main():
     if maps:
         index = min(range(len(times)), key=lambda k: abs(times[k] - time))
         path = maps[min(index, len(maps) - 1)]
-        pixels = read_pgm(path)
+        pixels = read_fracture_map(path)
         radius = vtk_to_numpy(simple.servermanager.Fetch(grains)
                               .GetPointData().GetArray('radius'))
         pixel = 0.5 * radius.mean()
