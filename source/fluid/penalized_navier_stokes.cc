@@ -150,12 +150,7 @@ namespace softsand
     PenalizedNavierStokes<dim>::is_free_contact_cell(
       const CellAccessor<dim, dim> &cell) const
     {
-      using F = FluidParameters::FreeContactCells;
-      const bool free_contacts =
-        fluid_parameters.free_contact_cells == F::yes ||
-        (fluid_parameters.free_contact_cells == F::automatic && moving_solids &&
-         !last_was_steady);
-      if (!free_contacts || solid_field == nullptr)
+      if (!frees_contact_cells())
         return false;
       for (const auto v : cell.vertex_indices())
         if (cell.vertex_index(v) < velocity_wall_vertex.size() &&
@@ -167,10 +162,23 @@ namespace softsand
 
 
     template <int dim>
+    bool
+    PenalizedNavierStokes<dim>::frees_contact_cells() const
+    {
+      using F = FluidParameters::FreeContactCells;
+      return solid_field != nullptr &&
+             (fluid_parameters.free_contact_cells == F::yes ||
+              (fluid_parameters.free_contact_cells == F::automatic &&
+               moving_solids && !last_was_steady));
+    }
+
+
+    template <int dim>
     double
     PenalizedNavierStokes<dim>::freed_solid_fraction() const
     {
-      if (solid_field == nullptr)
+      // Most scenes free nothing: no pass over the mesh for them.
+      if (!frees_contact_cells())
         return 0.;
       const QGauss<dim>           quadrature(fe.degree + 1);
       FEValues<dim>               fe_values(fe,
@@ -1022,7 +1030,7 @@ namespace softsand
           nullptr,
         constant_modes,
         convection,
-        std::max(velocity_amg_sweeps, solver_parameters.velocity_amg_sweeps),
+        velocity_amg_sweeps_in_use(),
         solver_parameters.velocity_amg_smoother ==
             SolverParameters::AmgSmoother::chebyshev ?
           "Chebyshev" :
@@ -1117,9 +1125,7 @@ namespace softsand
           }
         catch (const SolverControl::NoConvergence &e)
           {
-            const unsigned int sweeps =
-              std::max(velocity_amg_sweeps,
-                       solver_parameters.velocity_amg_sweeps);
+            const unsigned int sweeps = velocity_amg_sweeps_in_use();
             AssertThrow(!fresh || 2 * sweeps <= max_sweeps,
                         ExcMessage(
                           linear_solver_failure(e, control.tolerance()) +

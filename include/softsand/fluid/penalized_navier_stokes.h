@@ -433,6 +433,11 @@ namespace softsand
                       std::vector<double>            &void_fraction,
                       std::vector<Tensor<1, dim>>    &solid_velocity,
                       std::vector<int>               &solid_index) const;
+      /// Whether contact cells are freed in this solve (FluidParameters::
+      /// free_contact_cells: automatic frees them for moving grains in
+      /// transient solves).
+      bool
+      frees_contact_cells() const;
       /// Whether @p cell touches a face with an imposed velocity or lies
       /// within one cell of two solids, and contact cells are freed.
       bool
@@ -488,6 +493,12 @@ namespace softsand
       /// doubled (at most twice) for the rest of the run each time a solve
       /// with a new preconditioner fails (solve_linear()).
       unsigned int velocity_amg_sweeps = 0;
+      unsigned int
+      velocity_amg_sweeps_in_use() const
+      {
+        return std::max(velocity_amg_sweeps,
+                        solver_parameters.velocity_amg_sweeps);
+      }
 
       const SolidField<dim>          *solid_field = nullptr;
       bool                             moving_solids = false;
