@@ -255,7 +255,7 @@ namespace softsand
     {
       set_up_time_step();
       rebuild_neighbor_lists();
-      compute_forces();
+      compute_forces(v, w);
       if (adaptive)
         adapt_time_step();
     }
@@ -635,7 +635,8 @@ namespace softsand
 
 
     void
-    GranularDynamics::compute_forces()
+    GranularDynamics::compute_forces(const std::vector<Tensor<1, 3>> &v_slide,
+                                     const std::vector<Tensor<1, 3>> &w_slide)
     {
       const Tensor<1, 3> &g = parameters.gravity;
       damping_kick.assign(n_local, Tensor<1, 3>());
@@ -686,6 +687,9 @@ namespace softsand
           const double       m_eff = pair_m_eff[k];
           const Tensor<1, 3> v_rel =
             v[i] - v[j] - cross_product_3d(li * w[i] + lj * w[j], n);
+          const Tensor<1, 3> v_slide_rel =
+            v_slide[i] - v_slide[j] -
+            cross_product_3d(li * w_slide[i] + lj * w_slide[j], n);
           double area = 0;
           if (cohesive)
             {
@@ -694,7 +698,7 @@ namespace softsand
               area = M_PI * std::max(0., (4 * d2 * ri2 - s * s) / (4 * d2));
             }
           double stiffness, damping, impulse;
-          law.evaluate(n, delta, li, lj, r_eff, m_eff, v_rel, w[i] - w[j],
+          law.evaluate(n, delta, li, lj, r_eff, m_eff, v_rel, v_slide_rel, w[i] - w[j],
                        area, dt, h, force, torque_i, torque_j, stiffness,
                        damping, impulse);
           grain_stiffness[i] += stiffness;
@@ -739,10 +743,12 @@ namespace softsand
           const double       li    = radius[i] - 0.5 * delta;
           const Tensor<1, 3> v_rel =
             v[i] - wall.velocity - cross_product_3d(li * w[i], n);
+          const Tensor<1, 3> v_slide_rel =
+            v_slide[i] - wall.velocity - cross_product_3d(li * w_slide[i], n);
           const double area =
             cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
           double stiffness, damping, impulse;
-          law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, w[i],
+          law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, v_slide_rel, w[i],
                        area, dt, h, force, torque_i, torque_j, stiffness,
                        damping, impulse);
           grain_stiffness[i] += stiffness;
@@ -830,8 +836,9 @@ namespace softsand
       const double half = 0.5 * dt;
       double       max_move2 = 0;
       // Kick, drift, then predict the end-of-step velocity with the old
-      // force (v + dt/2 a_n): the damping and the tangential spring then see
-      // a second-order velocity instead of the half-step one; the final
+      // force (v + dt/2 a_n): the damping then sees a second-order velocity
+      // instead of the half-step one (the tangential spring is loaded by
+      // the drift velocity, the contact point's exact slide); the final
       // kick corrects with the new force, and puts the normal damping
       // impulse of the step at Gamma(delta_new) - Gamma(delta_old) exactly
       // (ContactLaw): restitution then stays within 0.7% of the input for
@@ -860,6 +867,8 @@ namespace softsand
       // After a rebuild the grains may be in a new order (and new ghosts
       // came): predict from the arrays as they are now.
       const unsigned int n_all = x.size();
+      v_drift.assign(v.begin(), v.begin() + n_all);
+      w_drift.assign(w.begin(), w.begin() + n_all);
       for (unsigned int i = 0; i < n_all; ++i)
         {
           v[i] += (half * inv_mass[i]) * f[i];
@@ -868,7 +877,7 @@ namespace softsand
       f_old.assign(f.begin(), f.begin() + n_local);
       t_old.assign(t.begin(), t.begin() + n_local);
 
-      compute_forces();
+      compute_forces(v_drift, w_drift);
       for (unsigned int i = 0; i < n_local; ++i)
         {
           v[i] += (half * inv_mass[i]) * (f[i] - f_old[i]) +

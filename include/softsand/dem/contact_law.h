@@ -95,6 +95,11 @@ namespace softsand
        * @p lever_i / @p lever_j distances from the centres to the contact
        * point (lever_j = 0 for a wall), @p r_eff, @p m_eff effective radius
        * and mass, @p v_rel velocity of i relative to j at the contact point,
+       * @p v_slide the same over the step (from the velocities of the
+       * drift, t + dt/2: dt v_slide is how far the contact point slid, which
+       * loads the tangential spring; the end-of-step @p v_rel there put the
+       * spring half a step ahead, an extra dashpot k_t dt / 2 that gave 16-19 %
+       * too much spin in oblique impacts at 0.2 T_R),
        * @p w_rel angular velocity of i minus that of j, @p area the area of
        * the contact circle (for cohesion).
        *
@@ -112,6 +117,7 @@ namespace softsand
                const double        r_eff,
                const double        m_eff,
                const Tensor<1, 3> &v_rel,
+               const Tensor<1, 3> &v_slide,
                const Tensor<1, 3> &w_rel,
                const double        area,
                const double        dt,
@@ -161,6 +167,7 @@ namespace softsand
                          const double        r_eff,
                          const double        m_eff,
                          const Tensor<1, 3> &v_rel,
+                         const Tensor<1, 3> &v_slide,
                          const Tensor<1, 3> &w_rel,
                          const double        area,
                          const double        dt,
@@ -222,7 +229,7 @@ namespace softsand
         }
 
       // Tangential spring: rotate into the current tangent plane keeping its
-      // length, then stretch by the tangential displacement of this step.
+      // length, then stretch by the tangential slide of this step.
       Tensor<1, 3> &xi         = history.shear;
       const double  xi_normal  = xi * n;
       if (xi_normal != 0)
@@ -233,7 +240,7 @@ namespace softsand
           if (len2_new > 0)
             xi *= std::sqrt(len2 / len2_new);
         }
-      xi += dt * vt;
+      xi += dt * (v_slide - (v_slide * n) * n);
       Tensor<1, 3> ft       = -kt * xi - gamma_t * vt;
       const double ft_len2  = ft.norm_square();
       const double ft_max   = mu * std::abs(fn);

@@ -225,8 +225,12 @@ namespace softsand
       balance_load();
       void
       update_ghosts();
+      /// Contact, body and fluid forces at the current positions and
+      /// (predicted end-of-step) velocities; @p v_slide, @p w_slide: the
+      /// velocities over the step, which load the tangential springs.
       void
-      compute_forces();
+      compute_forces(const std::vector<Tensor<1, 3>> &v_slide,
+                     const std::vector<Tensor<1, 3>> &w_slide);
 
       const DEMParameters &parameters;
       MPI_Comm             comm;
@@ -252,6 +256,8 @@ namespace softsand
       std::vector<Point<3>>              x, x_at_build;
       std::vector<Tensor<1, 3>>          v, w, f, t, f_fluid, t_fluid;
       std::vector<Tensor<1, 3>>          f_old, t_old;
+      /// The velocities of the drift (t + dt/2), local grains and ghosts.
+      std::vector<Tensor<1, 3>>          v_drift, w_drift;
       /// Linear response of the held fluid force (see set_fluid_forces()).
       std::vector<double>                fluid_response, fluid_rotational_response;
       std::vector<Tensor<1, 3>>          v_reference, w_reference;
