@@ -285,13 +285,18 @@ def read_table(path):
     while i < len(lines) and lines[i].lstrip().startswith('#'):
         comments.append(lines[i])
         i += 1
-    if comments:
+    if i < len(lines) and not lines[i].lstrip()[0] in '0123456789-+.n':
+        # A names line not commented (statistics tables since stop 22).
+        names = lines[i].split()
+        i += 1
+    elif comments:
         names = comments[-1].lstrip().lstrip('#').split()
         comments = comments[:-1]
     else:
-        names = lines[0].split() if lines else []
-        i = 1
-    rows = [l.split() for l in lines[i:]]
+        names = []
+    # Since stop 22 the unit comments follow the names line.
+    comments += [l for l in lines[i:] if l.lstrip().startswith('#')]
+    rows = [l.split() for l in lines[i:] if not l.lstrip().startswith('#')]
     return comments, names, rows
 
 

@@ -68,11 +68,28 @@ def parse_set(values):
     return pairs
 
 
+def read_table(path):
+    """Rows of a softsand table as dicts (name -> float): a names line, '#'
+    lines (one per column with its unit) and rows of numbers. Tables of
+    earlier versions name the columns in their only '#' line."""
+    names, last_comment, rows = None, '', []
+    with open(path) as f:
+        for line in f:
+            if line.startswith('#'):
+                last_comment = line
+            elif line.strip():
+                if names is None and not line.lstrip()[0] in '0123456789-+.n':
+                    names = line.split()
+                    continue
+                if names is None:
+                    names = last_comment.lstrip('#').split()
+                rows.append(dict(zip(names, map(float, line.split()))))
+    return rows
+
+
 def read_statistics(directory):
     """Rows of <directory>/statistics.txt as dicts (name -> float)."""
-    with open(os.path.join(directory, 'statistics.txt')) as f:
-        names = f.readline().lstrip('#').split()
-        return [dict(zip(names, map(float, l.split()))) for l in f if l.strip()]
+    return read_table(os.path.join(directory, 'statistics.txt'))
 
 
 def run(softsand, text, workdir, name, ranks=1, overrides=()):

@@ -1,6 +1,7 @@
 // Bad input stops with a message that names the entry, the value and what
 // is allowed: unknown entries, wrong types, out-of-range values, missing
-// files, overlapping grains, grains outside the domain, radius <= 0; and
+// files, overlapping grains, grains outside the domain, radius <= 0, a
+// cylindrical domain that is not one or conditions on faces it lacks; and
 // for granular scenes also a time step above the Rayleigh limit, servo walls
 // without a target and malformed walls or size distributions; for coupled
 // scenes a restart without checkpoint, a zero re-adaptation distance and
@@ -87,6 +88,16 @@ main(int argc, char **argv)
   check("bad body force", "subsection fluid\n set body force = 1; x +\nend\n");
   check("negative grad-div",
         "subsection fluid solver\n set grad div = -0.05\nend\n");
+  check("cylinder with a rectangular cross-section",
+        "subsection mesh\n set geometry = cylinder\n"
+        " set upper corner = 1e-3, 2e-3, 1e-3\nend\n");
+  check("cylinder with coarse cells",
+        "subsection mesh\n set geometry = cylinder\n"
+        " set coarse cells = 2, 2, 2\nend\n");
+  check("condition on a face a cylinder does not have",
+        "subsection mesh\n set geometry = cylinder\nend\n"
+        "subsection boundary conditions\n subsection x min\n"
+        "  set type = pressure\n end\nend\n");
 
   {
     std::ofstream pack("overlapping_pack.txt");

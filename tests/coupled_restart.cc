@@ -14,6 +14,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <cmath>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -61,7 +62,7 @@ namespace
     std::ifstream in(file);
     unsigned int  rows = 0;
     for (std::string line; std::getline(in, line);)
-      rows += !line.empty() && line[0] != '#';
+      rows += !line.empty() && line[0] != '#' && !std::isalpha(line[0]);
     return rows;
   }
 

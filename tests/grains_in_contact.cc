@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -36,12 +37,12 @@ namespace
     for (std::string line; std::getline(in, line);)
       {
         std::istringstream words(line);
-        if (line[0] == '#')
+        // The names line; '#' lines (a column and its unit each).
+        if (line.empty() || line[0] == '#')
+          continue;
+        if (std::isalpha(line[0]))
           {
-            names.clear();
-            std::string name;
-            words >> name;
-            while (words >> name)
+            for (std::string name; words >> name;)
               names.push_back(name);
             continue;
           }

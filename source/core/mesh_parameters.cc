@@ -3,6 +3,9 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace softsand
 {
   namespace core
@@ -20,6 +23,21 @@ namespace softsand
                           "upper corner",
                           dim == 2 ? "1e-3, 1e-3" : "1e-3, 1e-3, 1e-3",
                           "Upper corner of the box domain (m).");
+      prm.declare_entry(
+        "geometry",
+        "box",
+        Patterns::Selection("box|cylinder"),
+        "box: the box between the corners; its faces are the boundary "
+        "conditions' x min ... z max (boundary ids 0-5). cylinder (3D): the "
+        "circular cylinder inscribed in that box along 'cylinder axis' (a "
+        "permeameter): its ends are the box faces normal to the axis and "
+        "keep their names and ids; its mantle, boundary id 6, is a no-slip "
+        "wall, meshed as an inscribed 32-gon. The box's cross-section normal "
+        "to the axis must be square: its half edge is the radius.");
+      prm.declare_entry("cylinder axis",
+                        "z",
+                        Patterns::Selection("x|y|z"),
+                        "geometry = cylinder: the direction of its axis.");
       prm.declare_entry("coarse cells",
                         "",
                         Patterns::List(Patterns::Integer(1), 0, dim),
@@ -81,6 +99,39 @@ namespace softsand
                                   "each coordinate must exceed the lower "
                                   "corner's (" +
                                     prm.get("lower corner") + ")");
+      geometry      = prm.get("geometry") == "cylinder" ? Geometry::cylinder :
+                                                          Geometry::box;
+      cylinder_axis = prm.get("cylinder axis") == "x" ? 0 :
+                      prm.get("cylinder axis") == "y" ? 1 :
+                                                        2;
+      if (geometry == Geometry::cylinder)
+        {
+          if (dim != 3)
+            base::throw_invalid_parameter("mesh/geometry",
+                                          "cylinder",
+                                          "a cylinder is a 3D domain: set "
+                                          "dimension = 3 or geometry = box");
+          const unsigned int a = cylinder_axis;
+          const double       w1 =
+            upper_corner[(a + 1) % dim] - lower_corner[(a + 1) % dim];
+          const double w2 =
+            upper_corner[(a + 2) % dim] - lower_corner[(a + 2) % dim];
+          if (std::abs(w1 - w2) > 1e-9 * std::max(w1, w2))
+            base::throw_invalid_parameter(
+              "mesh/upper corner",
+              prm.get("upper corner"),
+              "geometry = cylinder along " + prm.get("cylinder axis") +
+                " needs a square cross-section: its two edges normal to the "
+                "axis are " +
+                Utilities::to_string(w1) + " and " + Utilities::to_string(w2) +
+                " m (their half is the radius)");
+          if (!Utilities::trim(prm.get("coarse cells")).empty())
+            base::throw_invalid_parameter(
+              "mesh/coarse cells",
+              prm.get("coarse cells"),
+              "geometry = cylinder makes its own coarse mesh (192 cells "
+              "across, an inscribed 32-gon): leave it empty");
+        }
       coarse_cells.clear();
       for (const auto &s :
            Utilities::split_string_list(prm.get("coarse cells"), ','))
@@ -106,6 +157,14 @@ namespace softsand
       kelly_cycles          = prm.get_integer("kelly cycles");
       kelly_refine_fraction = prm.get_double("kelly refine fraction");
       prm.leave_subsection();
+    }
+
+    template <int dim>
+    double
+    MeshParameters<dim>::cylinder_radius() const
+    {
+      const unsigned int across = (cylinder_axis + 1) % dim;
+      return 0.5 * (upper_corner[across] - lower_corner[across]);
     }
 
     template struct MeshParameters<2>;

@@ -47,7 +47,11 @@ namespace softsand
       fluid.parse_parameters(prm);
       fluid_solver.parse_parameters(prm);
       boundary_conditions.parse_parameters(
-        prm, BoundingBox<dim>(std::make_pair(mesh.lower_corner, mesh.upper_corner)));
+        prm,
+        BoundingBox<dim>(std::make_pair(mesh.lower_corner, mesh.upper_corner)),
+        mesh.geometry == MeshParameters<dim>::Geometry::cylinder ?
+          mesh.cylinder_axis :
+          numbers::invalid_unsigned_int);
       output.parse_parameters(prm);
       postprocessing.parse_parameters(prm);
       convergence_study.parse_parameters(prm);

@@ -280,6 +280,15 @@ namespace softsand
             bad("the motion is 'fixed', 'velocity vx vy vz' or 'servo'");
           walls.push_back(w);
         }
+
+      // A plane inside a cylinder wall along its normal (a permeameter's
+      // piston) loads the cylinder's cross-section, not the box's.
+      for (auto &plane : walls)
+        if (plane.shape == Wall::Shape::plane)
+          for (const auto &c : walls)
+            if (c.shape == Wall::Shape::cylinder && !c.outside &&
+                std::abs(std::abs(plane.normal * c.normal) - 1) < 1e-9)
+              plane.area = std::min(plane.area, M_PI * c.radius * c.radius);
       return walls;
     }
 

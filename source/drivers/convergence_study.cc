@@ -6,6 +6,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <softsand/drivers/convergence_study.h>
+#include <softsand/io/statistics_file.h>
 #include <softsand/base/parameter_tools.h>
 #include <softsand/drivers/run_scene.h>
 #include <softsand/drivers/scene_setup.h>
@@ -96,20 +97,14 @@ namespace softsand
       sum_statistics_column(const std::string &filename,
                             const std::string &column)
       {
-        std::ifstream in(filename);
-        std::string   line;
-        if (!std::getline(in, line))
+        std::ifstream  in(filename);
+        const auto     names = io::StatisticsFile::read_column_names(in);
+        const auto     found = std::find(names.begin(), names.end(), column);
+        if (found == names.end())
           return 0;
-        std::istringstream header(line);
-        std::string        name;
-        header >> name; // '#'
-        int index = -1;
-        for (int k = 0; header >> name; ++k)
-          if (name == column)
-            index = k;
-        if (index < 0)
-          return 0;
-        double sum = 0;
+        const int   index = found - names.begin();
+        std::string line;
+        double      sum = 0;
         while (std::getline(in, line))
           {
             std::istringstream row(line);

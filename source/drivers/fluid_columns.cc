@@ -35,8 +35,7 @@ namespace softsand
         axis,
         mu,
         pp.pressure_planes,
-        p.mesh.upper_corner[axis] - p.mesh.lower_corner[axis],
-        p.boundary_conditions.face_area(2 * axis)));
+        p.mesh.upper_corner[axis] - p.mesh.lower_corner[axis]));
       columns.emplace_back(
         std::make_unique<PorosityColumns<dim>>(axis, pp.pressure_planes));
       // The entry that chose a model without inertia, named by the

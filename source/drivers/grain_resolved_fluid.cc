@@ -75,7 +75,7 @@ namespace softsand
         const auto        &m = parameters.mesh;
         const bool         resolve_grains =
           !grain_list.empty() && m.cells_per_diameter > 0;
-        make_box_mesh(mesh,
+        make_domain_mesh(mesh,
                       m,
                       resolve_grains ? solids->locator().min_diameter() : 0.);
         if (!refine)

@@ -2,6 +2,7 @@
 
 #include <softsand/base/parameter_tools.h>
 #include <softsand/base/warnings.h>
+#include <softsand/drivers/cylinder_mesh.h>
 #include <softsand/drivers/scene_setup.h>
 #include <softsand/io/grain_file.h>
 
@@ -91,10 +92,16 @@ namespace softsand
 
     template <int dim>
     void
-    make_box_mesh(Triangulation<dim>              &triangulation,
-                  const core::MeshParameters<dim> &m,
-                  const double                     min_diameter)
+    make_domain_mesh(Triangulation<dim>              &triangulation,
+                     const core::MeshParameters<dim> &m,
+                     const double                     min_diameter)
     {
+      if constexpr (dim == 3)
+        if (m.geometry == core::MeshParameters<dim>::Geometry::cylinder)
+          {
+            make_cylinder_mesh(triangulation, m);
+            return;
+          }
       std::vector<unsigned int> cells = m.coarse_cells;
       double shortest = std::numeric_limits<double>::max();
       for (unsigned int d = 0; d < dim; ++d)
@@ -260,7 +267,7 @@ namespace softsand
 
 #define SOFTSAND_INSTANTIATE(dim)                                             \
   template BoundingBox<dim> scene_box(const core::MeshParameters<dim> &);     \
-  template void             make_box_mesh(Triangulation<dim> &,               \
+  template void             make_domain_mesh(Triangulation<dim> &,            \
                                           const core::MeshParameters<dim> &,  \
                                           const double);                      \
   template std::unique_ptr<fluid::PenalizedNavierStokes<dim>>                 \

@@ -14,11 +14,13 @@ namespace softsand
   {
     template <int dim>
     std::string
-    BoundaryConditions<dim>::face_name(const unsigned int id)
+    BoundaryConditions<dim>::face_name(const unsigned int boundary_id)
     {
       static const char *names[] = {
-        "x min", "x max", "y min", "y max", "z min", "z max"};
-      return names[id];
+        "x min", "x max", "y min", "y max", "z min", "z max", "cylinder wall"};
+      if (boundary_id == cylinder_wall_id)
+        return names[6];
+      return names[boundary_id];
     }
 
 
@@ -72,9 +74,11 @@ namespace softsand
     template <int dim>
     void
     BoundaryConditions<dim>::parse_parameters(ParameterHandler       &prm,
-                                              const BoundingBox<dim> &box)
+                                              const BoundingBox<dim> &box,
+                                              const unsigned int      axis)
     {
-      domain = box;
+      domain        = box;
+      cylinder_axis = axis;
       prm.enter_subsection("boundary conditions");
       for (unsigned int b = 0; b < n_faces; ++b)
         {
@@ -114,6 +118,17 @@ namespace softsand
                       " expressions in x, y, z, t separated by ';'");
                 }
             }
+          if (cylinder_axis != numbers::invalid_unsigned_int &&
+              b / 2 != cylinder_axis && f.type != Type::no_slip)
+            base::throw_invalid_parameter(
+              "boundary conditions/" + face_name(b) + "/type",
+              prm.get("type"),
+              "mesh/geometry = cylinder along its axis " +
+                face_name(2 * cylinder_axis).substr(0, 1) +
+                " has no such face: its ends are '" +
+                face_name(2 * cylinder_axis) + "' and '" +
+                face_name(2 * cylinder_axis + 1) +
+                "', its mantle is a no-slip wall. Leave this face at no slip");
           if (f.type == Type::flow_rate)
             {
               // Uniform velocity into the domain through this face.
@@ -157,6 +172,12 @@ namespace softsand
     double
     BoundaryConditions<dim>::face_area(const unsigned int b) const
     {
+      if (cylinder_axis != numbers::invalid_unsigned_int)
+        {
+          const double radius =
+            0.5 * domain.side_length((cylinder_axis + 1) % dim);
+          return b / 2 == cylinder_axis ? M_PI * radius * radius : 0.;
+        }
       double area = 1;
       for (unsigned int d = 0; d < dim; ++d)
         if (d != b / 2)
@@ -176,7 +197,10 @@ namespace softsand
       const FEValuesExtractors::Vector velocities(0);
       const ComponentMask velocity_mask = fe.component_mask(velocities);
 
-      for (unsigned int b = 0; b < n_faces; ++b)
+      // The box faces, and the mantle of a cylindrical domain (no slip).
+      const unsigned int n_ids =
+        n_faces + (cylinder_axis != numbers::invalid_unsigned_int ? 1 : 0);
+      for (unsigned int b = 0; b < n_ids; ++b)
         {
           const Face &f = faces[b];
           switch (f.type)

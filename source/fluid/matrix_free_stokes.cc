@@ -721,7 +721,8 @@ namespace softsand
           [this, inflation](const DoFHandler<dim>     &dof,
                             AffineConstraints<double> &c) {
             DoFTools::make_hanging_node_constraints(dof, c);
-            for (unsigned int b = 0; b < 2 * dim; ++b)
+            // The box faces and a cylinder's mantle (no slip).
+            for (unsigned int b = 0; b <= BoundaryConditions<dim>::cylinder_wall_id; ++b)
               {
                 const auto type = boundary_conditions.face(b).type;
                 if (type == BoundaryConditions<dim>::Type::pressure)

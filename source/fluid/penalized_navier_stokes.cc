@@ -137,7 +137,7 @@ namespace softsand
         if (!cell->is_artificial())
           for (const auto f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() < BC::n_faces &&
+                cell->face(f)->boundary_id() <= BC::cylinder_wall_id &&
                 boundary_conditions.imposes_velocity(
                   cell->face(f)->boundary_id()))
               for (const auto v : cell->face(f)->vertex_indices())

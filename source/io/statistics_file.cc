@@ -1,8 +1,10 @@
 #include <deal.II/base/exceptions.h>
 
+#include <softsand/io/column_units.h>
 #include <softsand/io/statistics_file.h>
 
 #include <algorithm>
+#include <cctype>
 #include <iomanip>
 #include <sstream>
 
@@ -25,11 +27,18 @@ namespace softsand
           AssertThrow(in.good(),
                       ExcMessage("Cannot continue the statistics file <" +
                                  filename + ">: it does not exist."));
-          std::string header;
-          std::getline(in, header);
-          std::istringstream names(header.substr(header.find('#') + 1));
-          for (std::string c; names >> c;)
-            columns.push_back(c);
+          // The header ('#' lines and the names line) is kept as it was.
+          std::vector<std::string> header;
+          std::string              text;
+          while (in.peek() == '#' || std::isalpha(in.peek()))
+            {
+              std::string line;
+              std::getline(in, line);
+              header.push_back(line);
+              text += line + '\n';
+            }
+          std::istringstream header_text(text);
+          columns = read_column_names(header_text);
           const auto step_column =
             std::find(columns.begin(), columns.end(), "step") - columns.begin();
           AssertThrow(step_column < long(columns.size()),
@@ -50,7 +59,8 @@ namespace softsand
           if (is_writer)
             {
               file.open(filename);
-              file << header << '\n';
+              for (const auto &line : header)
+                file << line << '\n';
               for (const auto &line : kept)
                 file << line << '\n';
               file.flush();
@@ -64,6 +74,27 @@ namespace softsand
                       ExcMessage("Cannot open the statistics file <" +
                                  filename + "> for writing."));
         }
+    }
+
+
+    std::vector<std::string>
+    StatisticsFile::read_column_names(std::istream &in)
+    {
+      // The names line starts with a letter (a row with a digit or a sign).
+      // Files of earlier versions name the columns in a '#' line.
+      std::string last_comment, line;
+      while (in.peek() == '#' && std::getline(in, line))
+        last_comment = line;
+      std::string names_line;
+      if (std::isalpha(in.peek()))
+        std::getline(in, names_line);
+      else if (!last_comment.empty())
+        names_line = last_comment.substr(1);
+      std::vector<std::string> names;
+      std::istringstream       words(names_line);
+      for (std::string c; words >> c;)
+        names.push_back(c);
+      return names;
     }
 
 
@@ -97,10 +128,17 @@ namespace softsand
               columns.push_back(entry.first);
           if (is_writer)
             {
-              file << '#';
-              for (const auto &c : columns)
-                file << ' ' << c;
-              file << '\n';
+              // The names line first (numpy's genfromtxt(names=True) takes
+              // the first line, pandas and gnuplot the first non-comment
+              // one), then one comment line per column with its unit.
+              for (unsigned int i = 0; i < columns.size(); ++i)
+                file << (i == 0 ? "" : " ") << columns[i];
+              file << "\n# softsand statistics, " << columns.size()
+                   << " columns (SI units of a 3D scene; glossary: "
+                      "doc/statistics_columns.md):\n";
+              for (unsigned int i = 0; i < columns.size(); ++i)
+                file << "# " << i + 1 << ": " << columns[i] << " ("
+                     << column_unit(columns[i]) << ")\n";
             }
         }
       // Columns fixed by the first row; a quantity that no longer exists

@@ -118,6 +118,21 @@ namespace softsand
 
     template <int dim>
     double
+    boundary_area(const DoFHandler<dim> &dof_handler,
+                  const unsigned int     boundary_id)
+    {
+      double area = 0;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() && face->boundary_id() == boundary_id)
+              area += face->measure();
+      return Utilities::MPI::sum(area, dof_handler.get_communicator());
+    }
+
+
+    template <int dim>
+    double
     boundary_mean_pressure(const DoFHandler<dim> &dof_handler,
                            const BlockVector     &solution,
                            const unsigned int     boundary_id)
@@ -421,6 +436,8 @@ namespace softsand
 #define SOFTSAND_INSTANTIATE(dim)                                           \
   template double boundary_flux(const DoFHandler<dim> &,                    \
                                 const BlockVector &,                        \
+                                const unsigned int);                        \
+  template double boundary_area(const DoFHandler<dim> &,                    \
                                 const unsigned int);                        \
   template double boundary_mean_pressure(const DoFHandler<dim> &,           \
                                          const BlockVector &,               \

@@ -113,9 +113,11 @@ COLUMNS = ['time', 'cells', 'mesh_adaptations', 'coupling_time_step',
            'grain_force_x', 'grain_force_y', 'pressure_drop',
            'kinetic_energy', 'max_speed']
 def table(path):
+    # The names line, '#' lines (a column and its unit each), the rows.
     with open(path) as f:
-        names = f.readline().lstrip('#').split()
-        return [dict(zip(names, map(float, l.split()))) for l in f if l.strip()]
+        lines = [l for l in f if l.strip() and not l.startswith('#')]
+    names = lines[0].split()
+    return [dict(zip(names, map(float, l.split()))) for l in lines[1:]]
 def files(pvd):
     return [l.split('file="')[1].split('"')[0] for l in open(pvd) if 'file="' in l]
 whole = table('whole/statistics.txt')

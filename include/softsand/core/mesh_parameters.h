@@ -13,15 +13,30 @@ namespace softsand
     using namespace dealii;
 
     /**
-     * The fluid domain (an axis-aligned box whose faces carry boundary ids
-     * 0..2 dim-1 in the order x min, x max, y min, y max, z min, z max) and
-     * how the octree mesh is refined around grain surfaces.
+     * The fluid domain and how the octree mesh is refined around grain
+     * surfaces. The domain is the axis-aligned box between the corners
+     * (faces with boundary ids 0..2 dim-1 in the order x min, x max, y min,
+     * y max, z min, z max), or the circular cylinder inscribed in it: its
+     * ends keep the ids of the box faces they lie on and its mantle has
+     * id 2 dim (a no-slip wall).
      */
     template <int dim>
     struct MeshParameters
     {
+      enum class Geometry
+      {
+        box,
+        cylinder
+      };
+
       Point<dim> lower_corner;
       Point<dim> upper_corner;
+      Geometry   geometry = Geometry::box;
+      /// The cylinder's axis: the coordinate direction 0, 1 or 2.
+      unsigned int cylinder_axis = dim - 1;
+      /// Half the edge of the box's square cross-section normal to the axis.
+      double
+      cylinder_radius() const;
       /// Coarse cells per direction; empty: cubes of the shortest edge.
       std::vector<unsigned int> coarse_cells;
       unsigned int              global_refinements = 0;

@@ -59,15 +59,15 @@ namespace softsand
     make_output_directory(const std::string &directory, const MPI_Comm comm);
 
     /**
-     * The coarse box mesh: the cells of mesh/coarse cells, or cubes of the
-     * shortest edge. Where grains are resolved (@p min_diameter > 0), the
-     * subdivision is chosen so that some octree level has cells of exactly
-     * (or just below) d_min / N, else N = 8 and N = 12 would give the same
-     * mesh.
+     * The coarse mesh of the domain: for a box the cells of mesh/coarse
+     * cells, or cubes of the shortest edge. Where grains are resolved
+     * (@p min_diameter > 0), the subdivision is chosen so that some octree
+     * level has cells of exactly (or just below) d_min / N, else N = 8 and
+     * N = 12 would give the same mesh. For a cylinder: make_cylinder_mesh.
      */
     template <int dim>
     void
-    make_box_mesh(Triangulation<dim>              &triangulation,
+    make_domain_mesh(Triangulation<dim>              &triangulation,
                   const core::MeshParameters<dim> &mesh,
                   const double                     min_diameter);
 

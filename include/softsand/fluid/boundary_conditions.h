@@ -23,7 +23,9 @@ namespace softsand
 
     /**
      * Boundary conditions on the faces of the box domain, one subsection per
-     * face ("x min" = boundary id 0, "x max" = 1, "y min" = 2, ...).
+     * face ("x min" = boundary id 0, "x max" = 1, "y min" = 2, ...). A
+     * cylindrical domain keeps the two faces normal to its axis as its ends;
+     * its mantle (boundary id 2 dim) is a no-slip wall.
      * Velocity-type conditions become constraints; a pressure face is a
      * natural (do-nothing) condition with prescribed mean normal stress.
      */
@@ -52,15 +54,21 @@ namespace softsand
       };
 
       static constexpr unsigned int n_faces = 2 * dim;
+      /// The mantle of a cylindrical domain.
+      static constexpr unsigned int cylinder_wall_id = 2 * dim;
 
       static std::string
       face_name(const unsigned int boundary_id);
 
       static void
       declare_parameters(ParameterHandler &prm);
-      /// @p domain gives face areas for flow-rate conditions.
+      /// @p domain gives face areas for flow-rate conditions; a cylindrical
+      /// domain inscribed in it has its axis along @p cylinder_axis
+      /// (numbers::invalid_unsigned_int: the box itself).
       void
-      parse_parameters(ParameterHandler &prm, const BoundingBox<dim> &domain);
+      parse_parameters(ParameterHandler       &prm,
+                       const BoundingBox<dim> &domain,
+                       const unsigned int cylinder_axis = numbers::invalid_unsigned_int);
 
       /// Add the velocity constraints of all faces at @p time.
       void
@@ -120,14 +128,17 @@ namespace softsand
       Tensor<1, dim>
       inflow_velocity() const;
 
-      /// Area of face @p boundary_id of the box.
+      /// Area of face @p boundary_id of the box (of the circle for a
+      /// cylinder's end).
       double
       face_area(const unsigned int boundary_id) const;
 
     private:
-      std::array<Face, n_faces> faces;
-      PressureRegion<dim>       inlet, perimeter;
-      BoundingBox<dim>          domain;
+      /// The box faces, then the cylinder's mantle (always no slip).
+      std::array<Face, n_faces + 1> faces;
+      PressureRegion<dim>           inlet, perimeter;
+      BoundingBox<dim>              domain;
+      unsigned int cylinder_axis = numbers::invalid_unsigned_int;
     };
   } // namespace fluid
 } // namespace softsand

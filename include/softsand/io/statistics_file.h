@@ -13,9 +13,11 @@ namespace softsand
   namespace io
   {
     /**
-     * The statistics table of a run: whitespace-separated columns, a first
-     * line "# name1 name2 ...", one row per step or solve, flushed at every
-     * row so that nothing is lost if a long run stops. Rank 0 writes.
+     * The statistics table of a run: a names line "step time wall_time
+     * ...", then '#' lines, one per column with its unit ("# 3: wall_time
+     * (s)"), then one row of whitespace-separated numbers per step or solve,
+     * flushed at every row so that nothing is lost if a long run stops.
+     * Rank 0 writes.
      */
     class StatisticsFile
     {
@@ -28,6 +30,12 @@ namespace softsand
                      const long         resume_after_step = new_file);
 
       static constexpr long new_file = -1;
+
+      /// The column names of a statistics file read from its start: its
+      /// names line, or for files of earlier versions the names in its
+      /// only '#' line. Leaves @p in after the names.
+      static std::vector<std::string>
+      read_column_names(std::istream &in);
 
       /// Set a column of the current row (the first row fixes the columns).
       void

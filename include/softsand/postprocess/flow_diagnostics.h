@@ -44,6 +44,13 @@ namespace softsand
                   const BlockVector     &solution,
                   const unsigned int     boundary_id);
 
+    /// Area of boundary @p id as meshed (m^2; m in 2D): a cylinder's end is
+    /// a polygon that approaches the circle as the mesh is refined.
+    template <int dim>
+    double
+    boundary_area(const DoFHandler<dim> &dof_handler,
+                  const unsigned int     boundary_id);
+
     /// Mean pressure over boundary @p id (Pa).
     template <int dim>
     double

@@ -13,13 +13,11 @@ namespace softsand
       const unsigned int         flow_axis,
       const double               viscosity,
       const std::vector<double> &pressure_planes,
-      const double               box_length,
-      const double               inflow_area)
+      const double               box_length)
       : flow_axis(flow_axis)
       , viscosity(viscosity)
       , pressure_planes(pressure_planes)
       , box_length(box_length)
-      , inflow_area(inflow_area)
     {}
 
 
@@ -48,9 +46,12 @@ namespace softsand
           length = box_length;
         }
       const double inflow        = -boundary_flux(dof, u, 2 * axis);
-      const double q             = inflow / inflow_area;
+      const double q             = inflow / boundary_area(dof, 2 * axis);
       row["pressure_drop"]        = dp;
       row["flow_rate"]            = inflow;
+      // The same through the opposite face: with no other opening, equal
+      // to the inflow when the discrete flow conserves mass.
+      row["outflow_rate"]         = boundary_flux(dof, u, 2 * axis + 1);
       row["superficial_velocity"] = q;
       row["permeability"]         = (dp != 0) ? q * viscosity * length / dp : 0.;
     }

@@ -18,13 +18,12 @@ namespace softsand
     {
     public:
       /// @p pressure_planes: none (the box faces) or two positions on the
-      /// axis; @p box_length and @p inflow_area: the box along the axis and
-      /// its inflow face.
+      /// axis; @p box_length: the domain along the axis. The superficial
+      /// velocity divides the flow rate by the inflow face's meshed area.
       PermeabilityColumns(const unsigned int         flow_axis,
                           const double               viscosity,
                           const std::vector<double> &pressure_planes,
-                          const double               box_length,
-                          const double               inflow_area);
+                          const double               box_length);
 
       void
       add_columns(const FluidSnapshot<dim> &snapshot,
@@ -34,7 +33,7 @@ namespace softsand
       const unsigned int        flow_axis;
       const double              viscosity;
       const std::vector<double> pressure_planes;
-      const double              box_length, inflow_area;
+      const double              box_length;
     };
   } // namespace postprocess
 } // namespace softsand
