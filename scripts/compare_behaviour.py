@@ -29,9 +29,11 @@ scene.
 compare: for every scene, compares every *.txt file of DIR_A/<scene> with its
 counterpart in DIR_B/<scene> (except screen.txt and stderr.txt):
   * tables (statistics.txt, convergence.txt, pack files): by column name. The
-    header is the last line starting with '#' before the data (statistics:
-    '# name1 name2 ...'), or the first line if there is none (a deal.II
-    TableHandler text table). Row counts must match. Columns present in one
+    header is a first line that is not a comment and not numbers (statistics
+    since stop 22, followed by '# k: name (unit)' lines; a deal.II
+    TableHandler text table), else the last line starting with '#' before
+    the data (statistics before stop 22: '# name1 name2 ...'; pack files).
+    Row counts must match. Columns present in one
     capture only are printed as added / removed and are not failures by
     themselves. Timing and resource columns are not compared (see
     is_timing()): wall_time, loop_time, grain_steps_per_second, wall_s,
@@ -85,6 +87,9 @@ import subprocess
 import sys
 import tempfile
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from prm_tools import is_number  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 NUMDIFF = '/usr/bin/numdiff'
@@ -285,7 +290,7 @@ def read_table(path):
     while i < len(lines) and lines[i].lstrip().startswith('#'):
         comments.append(lines[i])
         i += 1
-    if i < len(lines) and not lines[i].lstrip()[0] in '0123456789-+.n':
+    if i < len(lines) and not is_number(lines[i].split()[0]):
         # A names line not commented (statistics tables since stop 22).
         names = lines[i].split()
         i += 1

@@ -68,6 +68,15 @@ def parse_set(values):
     return pairs
 
 
+def is_number(text):
+    """Whether @p text reads as a number (nan and inf included)."""
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
 def read_table(path):
     """Rows of a softsand table as dicts (name -> float): a names line, '#'
     lines (one per column with its unit) and rows of numbers. Tables of
@@ -78,7 +87,7 @@ def read_table(path):
             if line.startswith('#'):
                 last_comment = line
             elif line.strip():
-                if names is None and not line.lstrip()[0] in '0123456789-+.n':
+                if names is None and not is_number(line.split()[0]):
                     names = line.split()
                     continue
                 if names is None:
