@@ -23,6 +23,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import prm_tools  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PRM = os.path.join(ROOT, "parameters/benchmarks/liggghts_pour.prm")
 DECK = os.path.join(ROOT, "benchmarks/liggghts/pour.in")
@@ -35,17 +38,6 @@ def mpi_prefix(ranks):
     if ranks == 1:
         return []
     return ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)]
-
-
-def read_softsand_pack(path):
-    grains = []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("#") or not line.strip():
-                continue
-            v = [float(x) for x in line.split()]
-            grains.append((v[0], v[1], v[2], v[3]))
-    return grains
 
 
 def read_liggghts_dump(path):
@@ -157,8 +149,8 @@ def main():
     rows = []
     for ranks in args.ranks:
         out, s_rate, s_ke = run_softsand(ranks, args.steps, args.workdir)
-        initial = read_softsand_pack(os.path.join(out, "initial_pack.txt"))
-        final_s = read_softsand_pack(os.path.join(out, "final_pack.txt"))
+        initial = prm_tools.read_grains(os.path.join(out, "initial_pack.txt"))
+        final_s = prm_tools.read_grains(os.path.join(out, "final_pack.txt"))
         dump, l_rate, l_ke, atoms = run_liggghts(ranks, args.steps, args.workdir, initial)
         final_l = read_liggghts_dump(dump)
         pf_s, pf_l = packing_fraction(final_s), packing_fraction(final_l)

@@ -96,6 +96,16 @@ def read_table(path):
     return rows
 
 
+def read_grains(path):
+    """(x, y, z, radius) of each grain of a softsand pack file."""
+    grains = []
+    with open(path) as f:
+        for line in f:
+            if line.strip() and not line.startswith('#'):
+                grains.append(tuple(float(v) for v in line.split()[:4]))
+    return grains
+
+
 def read_statistics(directory):
     """Rows of <directory>/statistics.txt as dicts (name -> float)."""
     return read_table(os.path.join(directory, 'statistics.txt'))

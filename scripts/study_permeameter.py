@@ -41,15 +41,6 @@ BUFFER = 2e-4       # grain-free fluid before and after the pack (m)
 MARGIN = 1e-4       # pressure planes this far inside the pack's ends (m)
 
 
-def read_pack(path):
-    grains = []
-    for line in open(path):
-        if line.strip() and not line.startswith('#'):
-            v = [float(x) for x in line.split()[:4]]
-            grains.append(v)
-    return grains
-
-
 def solid_between(grains, z1, z2):
     """Volume of the spheres between the planes z = z1 and z2."""
     def primitive(r, z):
@@ -62,6 +53,10 @@ def solid_between(grains, z1, z2):
     return volume
 
 
+# A cell and its 26 neighbours in the cell list.
+NEIGHBOUR_CELLS = [(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)]
+
+
 def annulus_porosities(grains, radius, z1, z2, n_annuli, spacing):
     """Porosity of n_annuli annuli of equal width between the planes, from a
     regular grid of sample points (a cell list of the grains)."""
@@ -70,6 +65,15 @@ def annulus_porosities(grains, radius, z1, z2, n_annuli, spacing):
     for g in grains:
         key = tuple(int(math.floor(c / cell)) for c in g[:3])
         buckets.setdefault(key, []).append(g)
+
+    def covered(x, y, z):
+        i, j, k = (int(math.floor(c / cell)) for c in (x, y, z))
+        for di, dj, dk in NEIGHBOUR_CELLS:
+            for g in buckets.get((i + di, j + dj, k + dk), ()):
+                if (x - g[0]) ** 2 + (y - g[1]) ** 2 + (z - g[2]) ** 2 < g[3] ** 2:
+                    return True
+        return False
+
     solid, total = [0] * n_annuli, [0] * n_annuli
     n = int(2 * radius / spacing)
     nz = int((z2 - z1) / spacing)
@@ -84,23 +88,7 @@ def annulus_porosities(grains, radius, z1, z2, n_annuli, spacing):
             for k in range(nz):
                 z = z1 + (k + 0.5) * spacing
                 total[a] += 1
-                key = (int(math.floor(x / cell)), int(math.floor(y / cell)),
-                       int(math.floor(z / cell)))
-                inside = False
-                for dx in (-1, 0, 1):
-                    for dy in (-1, 0, 1):
-                        for dz in (-1, 0, 1):
-                            for g in buckets.get((key[0] + dx, key[1] + dy, key[2] + dz), ()):
-                                if (x - g[0]) ** 2 + (y - g[1]) ** 2 + (z - g[2]) ** 2 < g[3] ** 2:
-                                    inside = True
-                                    break
-                            if inside:
-                                break
-                        if inside:
-                            break
-                    if inside:
-                        break
-                solid[a] += inside
+                solid[a] += covered(x, y, z)
     return [1 - s / t for s, t in zip(solid, total)]
 
 
@@ -148,7 +136,7 @@ def main():
     pack, height = (os.path.abspath(args.pack), args.height) if args.pack else \
         pour(args.workdir, args.radius, args.seed)
     radius = args.radius
-    grains = read_pack(pack)
+    grains = prm_tools.read_grains(pack)
     d = sum((2 * g[3]) ** 3 for g in grains) / sum((2 * g[3]) ** 2 for g in grains)
     z1, z2 = MARGIN, height - MARGIN
     phi = 1 - solid_between(grains, z1, z2) / (math.pi * radius ** 2 * (z2 - z1))

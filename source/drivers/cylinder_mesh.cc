@@ -1,6 +1,5 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
-#include <deal.II/grid/manifold_lib.h>
 
 #include <softsand/drivers/cylinder_mesh.h>
 #include <softsand/fluid/boundary_conditions.h>

@@ -197,10 +197,7 @@ namespace softsand
       const FEValuesExtractors::Vector velocities(0);
       const ComponentMask velocity_mask = fe.component_mask(velocities);
 
-      // The box faces, and the mantle of a cylindrical domain (no slip).
-      const unsigned int n_ids =
-        n_faces + (cylinder_axis != numbers::invalid_unsigned_int ? 1 : 0);
-      for (unsigned int b = 0; b < n_ids; ++b)
+      for (unsigned int b = 0; b < n_boundary_ids(); ++b)
         {
           const Face &f = faces[b];
           switch (f.type)

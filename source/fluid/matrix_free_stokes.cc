@@ -721,8 +721,7 @@ namespace softsand
           [this, inflation](const DoFHandler<dim>     &dof,
                             AffineConstraints<double> &c) {
             DoFTools::make_hanging_node_constraints(dof, c);
-            // The box faces and a cylinder's mantle (no slip).
-            for (unsigned int b = 0; b <= BoundaryConditions<dim>::cylinder_wall_id; ++b)
+            for (unsigned int b = 0; b < boundary_conditions.n_boundary_ids(); ++b)
               {
                 const auto type = boundary_conditions.face(b).type;
                 if (type == BoundaryConditions<dim>::Type::pressure)

@@ -132,12 +132,12 @@ namespace softsand
     PenalizedNavierStokes<dim>::find_velocity_wall_vertices()
     {
       velocity_wall_vertex.assign(triangulation.n_vertices(), false);
-      using BC = BoundaryConditions<dim>;
       for (const auto &cell : triangulation.active_cell_iterators())
         if (!cell->is_artificial())
           for (const auto f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
-                cell->face(f)->boundary_id() <= BC::cylinder_wall_id &&
+                cell->face(f)->boundary_id() <
+                  boundary_conditions.n_boundary_ids() &&
                 boundary_conditions.imposes_velocity(
                   cell->face(f)->boundary_id()))
               for (const auto v : cell->face(f)->vertex_indices())

@@ -70,6 +70,15 @@ namespace softsand
                        const BoundingBox<dim> &domain,
                        const unsigned int cylinder_axis = numbers::invalid_unsigned_int);
 
+      /// Boundary ids of the domain: the box faces, and for a cylinder its
+      /// mantle (cylinder_wall_id) after them.
+      unsigned int
+      n_boundary_ids() const
+      {
+        return n_faces +
+               (cylinder_axis != numbers::invalid_unsigned_int ? 1 : 0);
+      }
+
       /// Add the velocity constraints of all faces at @p time.
       void
       make_velocity_constraints(const DoFHandler<dim>     &dof_handler,
