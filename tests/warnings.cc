@@ -166,19 +166,26 @@ main(int argc, char **argv)
               << std::endl;
     }
 
-  // 8. Settings a granular scene would ignore.
-  const std::string granular =
-    "subsection simulation control\n set mode = granular\n"
+  // 8. Settings a steady scene would ignore (it has no time loop to
+  // checkpoint); a granular scene restarts, and says so where there is no
+  // checkpoint yet.
+  const std::string scene =
+    "subsection simulation control\n set mode = %m\n"
     " set end time = 1e-4\n set %s\nend\n"
     "subsection mesh\n set lower corner = 0, 0, 0\n"
     " set upper corner = 1e-3, 1e-3, 1e-3\nend\n"
     "subsection output\n set directory = results\n set write vtu = false\n"
     " set verbosity = quiet\nend\n";
-  for (const std::string entry : {"restart = true", "checkpoint interval = 5"})
-    {
-      std::string text = granular;
-      text.replace(text.find("%s"), 2, entry);
-      deallog << "granular with " << entry << ": " << stops(text)
-              << std::endl;
-    }
+  for (const std::string mode : {"steady stokes", "granular"})
+    for (const std::string entry :
+         {"restart = true", "checkpoint interval = 5"})
+      {
+        if (mode == "granular" && entry != "restart = true")
+          continue;
+        std::string text = scene;
+        text.replace(text.find("%m"), 2, mode);
+        text.replace(text.find("%s"), 2, entry);
+        deallog << mode << " with " << entry << ": " << stops(text)
+                << std::endl;
+      }
 }

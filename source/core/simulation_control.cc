@@ -35,15 +35,21 @@ namespace softsand
       prm.declare_entry("checkpoint interval",
                         "0",
                         Patterns::Integer(0),
-                        "Coupled runs: write a checkpoint (mesh, fluid "
-                        "fields, grains, contact histories, walls) every "
-                        "this many coupling steps into the output "
-                        "directory (0: never).");
+                        "Transient, granular and coupled runs: write a "
+                        "checkpoint (mesh and fluid fields; grains, contact "
+                        "histories and walls) every this many time steps "
+                        "(coupling steps; DEM steps in a granular run) into "
+                        "the output directory, replacing the previous one "
+                        "once it is complete (0: never).");
       prm.declare_entry("restart",
                         "false",
                         Patterns::Bool(),
-                        "Coupled runs: continue from the checkpoint in the "
-                        "output directory instead of starting anew.");
+                        "Transient, granular and coupled runs: continue "
+                        "from the checkpoint in the output directory "
+                        "instead of starting anew; statistics rows and "
+                        "output series continue (rows the stopped run wrote "
+                        "after its checkpoint are replaced). The scene's "
+                        "other parameters must be those of the first run.");
       prm.declare_entry("max time steps",
                         "1000000",
                         Patterns::Integer(1),
@@ -90,20 +96,22 @@ namespace softsand
         base::throw_invalid_parameter("simulation control/end time",
                                 prm.get("end time"),
                                 "a transient, granular or coupled run needs an end time > 0 s");
-      // Only the coupled scene checkpoints so far: a setting the run would
-      // ignore stops it instead.
-      if (mode != Mode::coupled && restart)
+      // Steady runs have no time loop to checkpoint: a setting the run
+      // would ignore stops it instead.
+      if (is_steady() && restart)
         base::throw_invalid_parameter(
           "simulation control/restart",
           "true",
-          "only coupled scenes (mode = coupled) restart from a checkpoint; "
-          "this " + prm.get("mode") + " scene has none (set restart = false)");
-      if (mode != Mode::coupled && checkpoint_interval > 0)
+          "only runs with a time loop (mode = transient, granular or "
+          "coupled) restart from a checkpoint; this " + prm.get("mode") +
+            " run has none (set restart = false)");
+      if (is_steady() && checkpoint_interval > 0)
         base::throw_invalid_parameter(
           "simulation control/checkpoint interval",
           prm.get("checkpoint interval"),
-          "only coupled scenes (mode = coupled) write checkpoints; set it to "
-          "0 for this " + prm.get("mode") + " scene");
+          "only runs with a time loop (mode = transient, granular or "
+          "coupled) write checkpoints; set it to 0 for this " +
+            prm.get("mode") + " run");
       prm.leave_subsection();
     }
   } // namespace core

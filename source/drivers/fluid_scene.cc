@@ -2,6 +2,10 @@
 #include <deal.II/distributed/grid_refinement.h>
 #include <deal.II/numerics/error_estimator.h>
 
+#include <iomanip>
+#include <sstream>
+
+#include <softsand/drivers/checkpoint_files.h>
 #include <softsand/drivers/fluid_scene.h>
 #include <softsand/io/scene_grains.h>
 
@@ -14,7 +18,7 @@ namespace softsand
                                 const MPI_Comm               comm)
       : parameters(parameters)
       , mpi_communicator(comm)
-      , console(parameters.output, comm)
+      , console(parameters.output, comm, parameters.simulation_control.restart)
       , timer(comm, console.progress, TimerOutput::never, TimerOutput::wall_times)
       , fluid(parameters, comm, console.progress, timer)
     {}
@@ -32,7 +36,11 @@ namespace softsand
           io::create_scene_grains(p.grains, scene_box(p.mesh)));
       }
       warn_about_fluid_model(p, !fluid.grains().empty(), mpi_communicator);
-      fluid.make_mesh(true, false);
+      const bool restart = p.simulation_control.restart;
+      if (restart)
+        load_checkpoint_mesh();
+      else
+        fluid.make_mesh(true, false);
       console.progress << "softsand: " << dim << "D, "
                        << Utilities::MPI::n_mpi_processes(mpi_communicator)
                        << " MPI rank(s), " << fluid.grains().size()
@@ -41,7 +49,9 @@ namespace softsand
                        << " cells" << std::endl;
 
       statistics = std::make_unique<io::StatisticsFile>(
-        p.output.directory + "/statistics.txt", mpi_communicator);
+        p.output.directory + "/statistics.txt",
+        mpi_communicator,
+        restart ? long(first_step) : io::StatisticsFile::new_file);
       fluid.create_solver(false);
 
       if (p.simulation_control.is_steady())
@@ -88,11 +98,25 @@ namespace softsand
       const auto  &sc     = parameters.simulation_control;
       auto        &solver = fluid.solver();
       const double dt     = sc.time_step;
-      solver.setup_dofs();
-      solver.set_time(0);
-      solver.start_time_stepping();
-      double       time = 0;
-      unsigned int step = 0;
+      double       time = first_time;
+      unsigned int step = first_step;
+      if (sc.restart)
+        {
+          solver.deserialize(first_steps_done);
+          solver.set_time(time);
+          // Output numbering and series continue: nothing of the first run
+          // is overwritten.
+          fluid.resume_field_output(time);
+          console.pcout << "softsand: resumed at step " << step << ", t = "
+                        << time << " s, from the checkpoint in "
+                        << parameters.output.directory << std::endl;
+        }
+      else
+        {
+          solver.setup_dofs();
+          solver.set_time(0);
+          solver.start_time_stepping();
+        }
       Timer        loop_clock;
       double       last_report = -1e300;
       while (!sc.reached_end(time, step))
@@ -106,6 +130,9 @@ namespace softsand
             solver.relative_velocity_change() < sc.steady_state_tolerance;
           const bool last = steady || sc.reached_end(time, step);
           record(step, time, parameters.output.output_due(step, last));
+          if (sc.checkpoint_interval > 0 && step % sc.checkpoint_interval == 0 &&
+              !last)
+            write_checkpoint(step, time);
           // A line per step, but at most one every 5 s on quick steps.
           if (last || loop_clock.wall_time() >= last_report + 5)
             {
@@ -120,6 +147,40 @@ namespace softsand
           if (steady)
             break;
         }
+    }
+
+
+    template <int dim>
+    void
+    FluidScene<dim>::write_checkpoint(const unsigned int step,
+                                      const double       time)
+    {
+      TimerOutput::Scope t(timer, "checkpoint");
+      const std::string dir = parameters.output.directory;
+      fluid.solver().prepare_for_serialization();
+      fluid.triangulation().save(checkpoint_base(dir, step) + ".fluid");
+      std::ostringstream info;
+      info << std::setprecision(17) << step << ' ' << time << ' '
+           << fluid.solver().n_steps_done() << '\n';
+      commit_checkpoint(dir, step, "transient", info.str(), mpi_communicator);
+    }
+
+
+    template <int dim>
+    void
+    FluidScene<dim>::load_checkpoint_mesh()
+    {
+      TimerOutput::Scope t(timer, "checkpoint");
+      const std::string  dir  = parameters.output.directory;
+      std::istringstream info = read_checkpoint_info(dir, "transient");
+      info >> first_step >> first_time >> first_steps_done;
+      AssertThrow(!info.fail(),
+                  ExcMessage("The checkpoint <" + dir +
+                             "/checkpoint.info> is truncated or corrupt."));
+      // The coarse mesh as at the start, then the saved refinement; the
+      // fields are read once the solver exists (march_in_time()).
+      fluid.make_mesh(false, false);
+      fluid.triangulation().load(checkpoint_base(dir, first_step) + ".fluid");
     }
 
 

@@ -1,9 +1,11 @@
 #include <softsand/base/warnings.h>
+#include <softsand/drivers/checkpoint_files.h>
 #include <softsand/drivers/granular_scene.h>
 #include <softsand/io/grain_file.h>
 #include <softsand/io/scene_grains.h>
 
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -15,7 +17,7 @@ namespace softsand
                                  const MPI_Comm             comm)
       : parameters(parameters)
       , mpi_communicator(comm)
-      , console(parameters.output, comm)
+      , console(parameters.output, comm, parameters.simulation_control.restart)
       , box(scene_box(parameters.mesh))
       , grain_columns(probe_box(parameters.dem, box))
       , triangulation(comm)
@@ -26,10 +28,16 @@ namespace softsand
     GranularScene::run()
     {
       set_up();
-      record();
-      write_grains();
+      // A restarted run's row and files of its first step exist already.
+      if (!parameters.simulation_control.restart)
+        {
+          record();
+          write_grains();
+        }
       loop_clock.restart();
-      bool last_recorded = true;
+      bool               last_recorded = true;
+      const unsigned int checkpoint_interval =
+        parameters.simulation_control.checkpoint_interval;
       while (!finished())
         {
           dem->step();
@@ -44,11 +52,51 @@ namespace softsand
           if (parameters.dem.output_interval > 0 &&
               n % parameters.dem.output_interval == 0)
             write_grains();
+          if (checkpoint_interval > 0 && n % checkpoint_interval == 0 &&
+              !settled && !finished())
+            write_checkpoint();
           report_progress();
           if (settled)
             break;
         }
       finish(last_recorded);
+    }
+
+
+    void
+    GranularScene::write_checkpoint()
+    {
+      const std::string   dir  = parameters.output.directory;
+      const unsigned long step = dem->step_number();
+      std::ostringstream  dem_state;
+      dem->save_state(dem_state);
+      std::ostringstream info;
+      if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        {
+          std::ofstream out(checkpoint_base(dir, step) + ".dem",
+                            std::ios::binary);
+          out << dem_state.str();
+          info << std::setprecision(17) << step << ' ' << dem->time() << ' '
+               << settled_rows << ' ' << max_servo_error << '\n';
+        }
+      commit_checkpoint(dir, step, "granular", info.str(), mpi_communicator);
+    }
+
+
+    void
+    GranularScene::read_checkpoint()
+    {
+      const std::string  dir  = parameters.output.directory;
+      std::istringstream info = read_checkpoint_info(dir, "granular");
+      unsigned long      step = 0;
+      double             time = 0;
+      info >> step >> time >> settled_rows >> max_servo_error;
+      AssertThrow(!info.fail(),
+                  ExcMessage("The checkpoint <" + dir +
+                             "/checkpoint.info> is truncated or corrupt."));
+      std::ifstream in = open_checkpoint_file(checkpoint_base(dir, step) + ".dem");
+      dem->load_state(in);
+      first_step = step;
     }
 
 
@@ -65,8 +113,16 @@ namespace softsand
                              box,
                              contact_mesh_cell_size(grains, dp.skin_fraction));
       dem = std::make_unique<dem::GranularDynamics>(triangulation, dp, box);
-      dem->insert(grains, true);
-      dem->initialize();
+      const bool restart = p.simulation_control.restart;
+      // A restart reads the grains from the checkpoint; the scene's grains
+      // still size the contact mesh, as in the first run.
+      if (restart)
+        read_checkpoint();
+      else
+        {
+          dem->insert(grains, true);
+          dem->initialize();
+        }
 
       console.progress << "softsand granular: "
                        << Utilities::MPI::n_mpi_processes(mpi_communicator)
@@ -79,7 +135,9 @@ namespace softsand
                        << " Rayleigh time" << std::endl;
 
       statistics = std::make_unique<io::StatisticsFile>(
-        p.output.directory + "/statistics.txt", mpi_communicator);
+        p.output.directory + "/statistics.txt",
+        mpi_communicator,
+        restart ? long(first_step) : io::StatisticsFile::new_file);
       if (p.output.write_vtu)
         {
           grain_output =
@@ -88,7 +146,20 @@ namespace softsand
             wall_output =
               std::make_unique<io::WallOutput>(p.output.directory, "walls", box);
         }
-      if (!dp.save_initial_pack.empty() &&
+      if (restart)
+        {
+          // Output numbering and series continue: nothing of the first run
+          // is overwritten.
+          if (grain_output)
+            grain_output->resume(dem->time());
+          if (wall_output)
+            wall_output->resume(dem->time());
+          console.pcout << "softsand granular: resumed at step " << first_step
+                        << ", t = " << dem->time()
+                        << " s, from the checkpoint in " << p.output.directory
+                        << std::endl;
+        }
+      if (!restart && !dp.save_initial_pack.empty() &&
           Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         io::write_grain_file<3>(p.output.directory + "/" + dp.save_initial_pack,
                                 grains);
@@ -164,8 +235,8 @@ namespace softsand
                        << " s, kinetic energy "
                        << last_statistics.kinetic_energy << " J, "
                        << std::setprecision(3)
-                       << dem->step_number() * last_statistics.n_grains /
-                            wall_clock.wall_time()
+                       << (dem->step_number() - first_step) *
+                            last_statistics.n_grains / wall_clock.wall_time()
                        << " grain-steps/s" << std::setprecision(6)
                        << std::endl;
       next_report += 10;
@@ -215,7 +286,7 @@ namespace softsand
       const double elapsed   = wall_clock.wall_time();
       const double loop_time = loop_clock.wall_time();
       const double grain_steps_per_second =
-        dem->step_number() * double(s.n_grains) / loop_time;
+        (dem->step_number() - first_step) * double(s.n_grains) / loop_time;
       last_results = {
         {"time", dem->time()},
         {"steps", double(dem->step_number())},

@@ -18,6 +18,7 @@ namespace softsand
         : directory(directory)
         , base_name(base_name)
         , domain(domain)
+        , series(directory, base_name)
     {}
 
 
@@ -27,11 +28,13 @@ namespace softsand
                       const MPI_Comm                comm)
     {
       std::ostringstream number;
-      number << std::setw(5) << std::setfill('0') << counter++;
+      number << std::setw(5) << std::setfill('0') << series.next_number();
       const std::string vtu = base_name + "_" + number.str() + ".vtu";
-      records.emplace_back(time, vtu);
       if (Utilities::MPI::this_mpi_process(comm) != 0)
-        return;
+        {
+          series.add(time, vtu, comm);
+          return;
+        }
 
       // Polygons (planes) and quadrilaterals (cylinders), each cell
       // remembering its wall.
@@ -164,12 +167,8 @@ namespace softsand
         out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
       }
 
-      const std::string pvd = directory + "/" + base_name + ".pvd";
-      {
-        std::ofstream out(pvd + ".tmp");
-        DataOutBase::write_pvd_record(out, records);
-      }
-      std::rename((pvd + ".tmp").c_str(), pvd.c_str());
+      // The series names the file once it is complete.
+      series.add(time, vtu, comm);
     }
   } // namespace io
 } // namespace softsand

@@ -43,6 +43,12 @@ namespace softsand
       solve_steady();
       void
       march_in_time();
+      /// checkpoint-STEP.fluid* and checkpoint.info (checkpoint_files.h).
+      void
+      write_checkpoint(const unsigned int step, const double time);
+      /// A restart: the mesh of the checkpoint in the output directory.
+      void
+      load_checkpoint_mesh();
       /// Refine the largest Kelly indicators of the velocity.
       void
       refine_by_velocity_error();
@@ -56,6 +62,11 @@ namespace softsand
       Timer                        wall_clock;
       GrainResolvedFluid<dim>      fluid;
       std::unique_ptr<io::StatisticsFile> statistics;
+      /// Where a restarted transient run resumes: step, time and BDF steps
+      /// of its checkpoint.
+      unsigned int first_step       = 0;
+      double       first_time       = 0;
+      unsigned int first_steps_done = 0;
       std::map<std::string, double>       last_results;
     };
   } // namespace drivers

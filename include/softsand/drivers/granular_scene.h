@@ -73,6 +73,12 @@ namespace softsand
       unsettled_note() const;
       void
       finish(const bool last_recorded);
+      /// checkpoint-STEP.dem and checkpoint.info (checkpoint_files.h).
+      void
+      write_checkpoint();
+      /// The state of the checkpoint in the output directory.
+      void
+      read_checkpoint();
 
       const core::Parameters<3>              &parameters;
       const MPI_Comm                          mpi_communicator;
@@ -95,6 +101,8 @@ namespace softsand
       double                  max_servo_error = 0;
       bool                    settled         = false;
       double                  next_report     = 10;
+      /// The DEM step this run started from (0, or a checkpoint's).
+      unsigned long           first_step      = 0;
     };
   } // namespace drivers
 } // namespace softsand

@@ -5,6 +5,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <softsand/dem/walls.h>
+#include <softsand/io/pvd_series.h>
 
 #include <string>
 #include <utility>
@@ -39,6 +40,14 @@ namespace softsand
             const double                  time,
             const MPI_Comm                comm);
 
+      /// A restarted run continues the series of the run it resumes at
+      /// @p time (see PvdSeries::resume()).
+      void
+      resume(const double time)
+      {
+        series.resume(time);
+      }
+
       /// Quadrilaterals around a cylinder in the drawing.
       static constexpr unsigned int cylinder_segments = 64;
 
@@ -46,8 +55,7 @@ namespace softsand
       std::string                                 directory;
       std::string                                 base_name;
       BoundingBox<3>                              domain;
-      unsigned int                                counter = 0;
-      std::vector<std::pair<double, std::string>> records;
+      PvdSeries                                   series;
     };
   } // namespace io
 } // namespace softsand
