@@ -129,7 +129,8 @@ namespace softsand
       const unsigned int                         amg_sweeps,
       const std::string                         &velocity_smoother,
       const SolverParameters::Schur              schur,
-      const double                               inner_tolerance)
+      const double                               inner_tolerance,
+      const bool                                 direct_velocity_solve)
       : system_matrix(system_matrix)
       , velocity_smoother(velocity_smoother)
       , schur(schur)
@@ -138,6 +139,14 @@ namespace softsand
                     schur == SolverParameters::Schur::least_squares_commutator)
       , inner_tolerance(inner_tolerance)
     {
+      (void)convection;
+      if (direct_velocity_solve)
+        {
+          velocity_direct =
+            std::make_unique<TrilinosWrappers::SolverDirect>(direct_control);
+          velocity_direct->initialize(system_matrix.block(0, 0));
+        }
+      else
       {
         TrilinosWrappers::PreconditionAMG::AdditionalData data;
         data.constant_modes        = velocity_constant_modes;
@@ -232,7 +241,10 @@ namespace softsand
       // Velocity: dst_u = A^-1 (src_u - B^T dst_p).
       system_matrix.block(0, 1).vmult(tmp_u, dst.block(1));
       tmp_u.sadd(-1., 1., src.block(0));
-      velocity_amg.vmult(dst.block(0), tmp_u);
+      if (velocity_direct)
+        velocity_direct->solve(dst.block(0), tmp_u);
+      else
+        velocity_amg.vmult(dst.block(0), tmp_u);
     }
   } // namespace fluid
 } // namespace softsand

@@ -141,7 +141,14 @@ namespace softsand
       prm.declare_entry("nonlinear method",
                         "newton",
                         Patterns::Selection("newton|picard"),
-                        "Linearization of the steady convection term.");
+                        "Linearization of the steady convection term. "
+                        "newton: the convective form rho (u . grad) u, "
+                        "quadratic convergence near the solution; picard: "
+                        "Oseen iterations in Temam's skew-symmetric form "
+                        "(rho (w . grad) u + rho/2 (div w) u, energy-stable, "
+                        "as the transient model), with the pseudo-time "
+                        "continuation of 'pseudo time cfl'. The two forms "
+                        "differ by the discrete divergence error.");
       prm.declare_entry("nonlinear tolerance",
                         "1e-8",
                         Patterns::Double(0, 1),
@@ -234,6 +241,17 @@ namespace softsand
         "cell Reynolds numbers above about 1 (doc/validation.md: drag at "
         "Re = 50 and 100).");
       prm.declare_entry(
+        "velocity block solver",
+        "amg",
+        Patterns::Selection("amg|direct"),
+        "linear solver = matrix based: how the preconditioner applies the "
+        "inverse of the velocity block. amg: one ML V-cycle (the default); "
+        "direct: a sparse LU factorization (Amesos), exact but with memory "
+        "and time growing much faster than the unknowns, for problems of "
+        "up to some 1e5 free velocity unknowns. An Oseen block at cell "
+        "Reynolds numbers of tens to hundreds is where the V-cycle fails "
+        "and the factorization does not (doc/solver_study.md, \"Oseen\").");
+      prm.declare_entry(
         "grad div",
         "0",
         Patterns::Double(0),
@@ -255,6 +273,23 @@ namespace softsand
         "larger gamma than the grain's cells: with a fixed gamma = rho U d "
         "FGMRES stalled in a 40 d box at Re = 10 and 50, c = 1 converges "
         "(doc/validation.md). 0 = constant gamma.");
+      prm.declare_entry(
+        "pseudo time cfl",
+        "0",
+        Patterns::Double(0),
+        "Steady Navier-Stokes (and the quasi-steady Navier-Stokes coupling "
+        "model): each Picard iteration adds the pseudo-time term "
+        "rho |w| / (cfl h) (u_{k+1} - u_k) at each point of a cell of edge "
+        "h, w the previous iterate. It vanishes at convergence, so the "
+        "steady solution is unchanged; it makes the convective velocity "
+        "block diagonally dominant at high cell Reynolds numbers, where "
+        "plain Picard's linear solves do not converge. 0 = plain Picard.");
+      prm.declare_entry(
+        "pseudo time growth",
+        "2",
+        Patterns::Double(1),
+        "Factor by which 'pseudo time cfl' grows after each Picard "
+        "iteration whose change fell (switched evolution relaxation).");
       prm.declare_entry(
         "linear solver",
         "matrix based",
@@ -328,6 +363,7 @@ namespace softsand
       velocity_amg_smoother = prm.get("velocity amg smoother") == "chebyshev" ?
                                 AmgSmoother::chebyshev :
                                 AmgSmoother::symmetric_gauss_seidel;
+      direct_velocity_solve = prm.get("velocity block solver") == "direct";
       grad_div              = prm.get_double("grad div");
       grad_div_cell_factor     = prm.get_double("grad div cell factor");
       if (!(grad_div >= 0) || !std::isfinite(grad_div))
@@ -335,6 +371,8 @@ namespace softsand
                                       prm.get("grad div"),
                                       "gamma must be a finite value >= 0 "
                                       "Pa s");
+      pseudo_time_cfl    = prm.get_double("pseudo time cfl");
+      pseudo_time_growth = prm.get_double("pseudo time growth");
       linear_solver            = prm.get("linear solver") == "matrix free" ?
                                    LinearSolver::matrix_free :
                                    LinearSolver::matrix_based;

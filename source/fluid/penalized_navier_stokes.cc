@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <sstream>
 #include <set>
 
@@ -620,6 +621,57 @@ namespace softsand
 
     template <int dim>
     void
+    PenalizedNavierStokes<dim>::add_inflow_traction(
+      const FEFaceValuesBase<dim> &face_values,
+      const Assembly               kind,
+      const unsigned int           bdf_order,
+      FullMatrix<double>          &local_matrix) const
+    {
+      const FEValuesExtractors::Vector velocities(0);
+      const unsigned int n_q = face_values.n_quadrature_points;
+      std::vector<Tensor<1, dim>> w(n_q), w_older(n_q);
+      // The advecting velocity of the volume term.
+      if (kind == Assembly::transient)
+        {
+          face_values[velocities].get_function_values(old_solution, w);
+          if (bdf_order != 1)
+            {
+              face_values[velocities].get_function_values(older_solution,
+                                                          w_older);
+              for (unsigned int q = 0; q < n_q; ++q)
+                w[q] = 2. * w[q] - w_older[q];
+            }
+        }
+      else
+        face_values[velocities].get_function_values(solution, w);
+
+      const double rho = fluid_parameters.density;
+      const auto  &fe  = face_values.get_fe();
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const double w_n = w[q] * face_values.normal_vector(q);
+          if (w_n >= 0)
+            continue;
+          const double weight = -0.5 * rho * w_n * face_values.JxW(q);
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+            {
+              const unsigned int ci = fe.system_to_component_index(i).first;
+              if (ci == dim)
+                continue;
+              const double phi_i = face_values.shape_value(i, q);
+              if (phi_i == 0)
+                continue;
+              for (unsigned int j = 0; j < fe.n_dofs_per_cell(); ++j)
+                if (fe.system_to_component_index(j).first == ci)
+                  local_matrix(i, j) +=
+                    weight * phi_i * face_values.shape_value(j, q);
+            }
+        }
+    }
+
+
+    template <int dim>
+    void
     PenalizedNavierStokes<dim>::assemble(const Assembly      kind,
                                          const double        dt,
                                          const unsigned int  bdf_order,
@@ -679,6 +731,11 @@ namespace softsand
                                        face_quadrature,
                                        update_values | update_normal_vectors |
                                          update_JxW_values);
+      FESubfaceValues<dim>  fe_subface_values(fe,
+                                             face_quadrature,
+                                             update_values |
+                                               update_normal_vectors |
+                                               update_JxW_values);
       const unsigned int dofs_per_cell = fe.n_dofs_per_cell();
       const unsigned int n_q           = quadrature.size();
       const FEValuesExtractors::Vector velocities(0);
@@ -850,6 +907,14 @@ namespace softsand
                         grad_w     = grad_u_current[q];
                         convection = true;
                         newton     = (kind == Assembly::steady_newton);
+                        if (pseudo_time_cfl > 0)
+                          {
+                            // Pseudo time: rho |w| / (cfl h) (u - u_k).
+                            const double pseudo =
+                              rho * w.norm() / (pseudo_time_cfl * h);
+                            beta += pseudo;
+                            beta_rhs += pseudo * w;
+                          }
                       }
                   }
 
@@ -873,9 +938,17 @@ namespace softsand
                     1. / (beta + beta_floor) :
                     0.;
 
+                // Picard iterates in Temam's form as the transient model
+                // does: where the last iterate is far from divergence free
+                // (rigid-node cells) the plain form is not energy-stable,
+                // and Oseen iterations at pore Reynolds numbers of 100
+                // diverged without it (doc/solver_study.md, "Oseen").
+                if (kind == Assembly::steady_picard)
+                  div_w = trace(grad_w);
                 const double temam =
-                  (convection && kind == Assembly::transient) ? 0.5 * rho * div_w :
-                                                                0.;
+                  (convection && kind != Assembly::steady_newton) ?
+                    0.5 * rho * div_w :
+                    0.;
                 // Loops over the dofs of each component: Taylor-Hood is
                 // primitive, so only the couplings below are nonzero.
                 const auto &pressure_dofs = dofs_of_component[dim];
@@ -939,6 +1012,51 @@ namespace softsand
                       }
                   }
               }
+
+            // Convection through a traction surface (pressure faces, the
+            // surface of a pressure region): the directional do-nothing
+            // condition mu du/dn - p n = -p_b n + rho/2 (w . n)_- u, which
+            // is Bernoulli's p + rho/2 u_n^2 = p_b where fluid enters from
+            // a reservoir at rest; without it inflow brings in kinetic
+            // energy that the Galerkin convection term cannot carry, and
+            // Oseen iterations diverge.
+            if (kind != Assembly::steady_stokes && !reservoir)
+              for (const unsigned int f : cell->face_indices())
+                {
+                  const auto face = cell->face(f);
+                  if (face->at_boundary())
+                    {
+                      if (boundary_conditions.face(face->boundary_id()).type ==
+                          BoundaryConditions<dim>::Type::pressure)
+                        {
+                          fe_face_values.reinit(cell, f);
+                          add_inflow_traction(fe_face_values, kind, bdf_order,
+                                              local_matrix);
+                        }
+                    }
+                  else if (boundary_conditions.has_pressure_regions())
+                    {
+                      if (face->has_children())
+                        {
+                          for (unsigned int sf = 0; sf < face->n_children(); ++sf)
+                            if (boundary_conditions.pressure_region(
+                                  cell->neighbor_child_on_subface(f, sf)
+                                    ->center()) != nullptr)
+                              {
+                                fe_subface_values.reinit(cell, f, sf);
+                                add_inflow_traction(fe_subface_values, kind,
+                                                    bdf_order, local_matrix);
+                              }
+                        }
+                      else if (boundary_conditions.pressure_region(
+                                 cell->neighbor(f)->center()) != nullptr)
+                        {
+                          fe_face_values.reinit(cell, f);
+                          add_inflow_traction(fe_face_values, kind, bdf_order,
+                                              local_matrix);
+                        }
+                    }
+                }
 
             // Pressure faces: do-nothing condition mu du/dn - p n = -p_b n.
             for (const auto &face : cell->face_iterators())
@@ -1036,7 +1154,8 @@ namespace softsand
           "Chebyshev" :
           "symmetric Gauss-Seidel",
         solver_parameters.schur,
-        solver_parameters.schur_inner_tolerance);
+        solver_parameters.schur_inner_tolerance,
+        solver_parameters.direct_velocity_solve);
       preconditioner_convection = convection;
       preconditioner_iterations = 0;
     }
@@ -1443,6 +1562,8 @@ namespace softsand
         solver_parameters.nonlinear_method == SolverParameters::Nonlinear::newton ?
           Assembly::steady_newton :
           Assembly::steady_picard;
+      pseudo_time_cfl = solver_parameters.pseudo_time_cfl;
+      double last_change = std::numeric_limits<double>::max();
       for (unsigned int k = 1; k <= solver_parameters.max_nonlinear_iterations;
            ++k)
         {
@@ -1460,10 +1581,16 @@ namespace softsand
           statistics.nonlinear_iterations = k;
           pcout << "      nonlinear iteration " << k << ": change "
                 << statistics.nonlinear_change << ", "
-                << statistics.linear_iterations << " FGMRES iterations"
-                << std::endl;
+                << statistics.linear_iterations << " FGMRES iterations";
+          if (pseudo_time_cfl > 0)
+            pcout << ", cfl " << pseudo_time_cfl;
+          pcout << std::endl;
+          if (pseudo_time_cfl > 0 && statistics.nonlinear_change < last_change)
+            pseudo_time_cfl *= solver_parameters.pseudo_time_growth;
+          last_change = statistics.nonlinear_change;
           if (statistics.nonlinear_change < solver_parameters.nonlinear_tolerance)
             {
+              pseudo_time_cfl = 0;
               // The Picard operator at the converged state: A(u) u - f.
               compute_rigid_reactions(Assembly::steady_picard, dt, 1);
               compute_boundary_reaction(Assembly::steady_picard, dt, 1);

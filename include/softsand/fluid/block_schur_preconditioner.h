@@ -6,9 +6,11 @@
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
 
 #include <softsand/fluid/fluid_parameters.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -83,7 +85,8 @@ namespace softsand
         const unsigned int                         amg_sweeps,
         const std::string           &velocity_smoother = "Chebyshev",
         const SolverParameters::Schur schur = SolverParameters::Schur::mass,
-        const double                 inner_tolerance = 1e-6);
+        const double                 inner_tolerance = 1e-6,
+        const bool                   direct_velocity_solve = false);
 
       void
       vmult(BlockVector &dst, const BlockVector &src) const;
@@ -93,6 +96,10 @@ namespace softsand
       /// ML keeps a pointer to the smoother name: it must outlive the AMG.
       const std::string                          velocity_smoother;
       TrilinosWrappers::PreconditionAMG          velocity_amg;
+      /// A sparse direct factorization of the velocity block instead of
+      /// the AMG V-cycle (small problems; diagnosis of convective blocks).
+      mutable SolverControl                      direct_control;
+      std::unique_ptr<TrilinosWrappers::SolverDirect> velocity_direct;
       TrilinosWrappers::PreconditionILU          pressure_mass_ilu;
       TrilinosWrappers::PreconditionAMG          pressure_laplace_amg;
       const SolverParameters::Schur              schur;

@@ -112,11 +112,20 @@ namespace softsand
         symmetric_gauss_seidel
       };
       AmgSmoother velocity_amg_smoother = AmgSmoother::chebyshev;
+      /// Matrix based: a sparse direct solve of the velocity block in the
+      /// preconditioner instead of the AMG V-cycle.
+      bool direct_velocity_solve = false;
       /// Grad-div coefficient gamma (Pa s): gamma (div v, div u) in the
       /// momentum equation, and mu + gamma in the Schur approximation.
       double grad_div = 0;
       /// Cell part of gamma: + factor rho |u| h (dimensionless factor).
       double grad_div_cell_factor = 0;
+      /// Steady Navier-Stokes: pseudo-time continuation of the Picard
+      /// iterations, a term rho |w| / (cfl h) (u_{k+1} - u_k) at each point
+      /// of a cell of edge h (0: plain Picard).
+      double pseudo_time_cfl = 0;
+      /// Growth of that cfl per Picard iteration once the change falls.
+      double pseudo_time_growth = 2;
       LinearSolver linear_solver            = LinearSolver::matrix_based;
       /// Geometric multigrid of the matrix-free velocity block.
       unsigned int smoother_degree = 4;

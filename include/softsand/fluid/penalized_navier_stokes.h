@@ -445,6 +445,13 @@ namespace softsand
       /// Mark the vertices on faces with an imposed velocity.
       void
       find_velocity_wall_vertices();
+      /// The directional do-nothing term rho/2 |(w . n)_-| (u, v) of a
+      /// traction face where fluid enters (kind's advecting velocity w).
+      void
+      add_inflow_traction(const FEFaceValuesBase<dim> &face_values,
+                          const Assembly               kind,
+                          const unsigned int           bdf_order,
+                          FullMatrix<double>          &local_matrix) const;
       /// Penalty coefficient of the fixed-point (steady) Brinkman term.
       double
       brinkman_coefficient(const double void_fraction,
@@ -516,6 +523,8 @@ namespace softsand
       double                           last_time_step    = 1;
       unsigned int                     last_bdf_order    = 1;
       bool                             last_was_steady   = true;
+      /// Pseudo-time cfl of the current Picard iteration (0: none).
+      double                           pseudo_time_cfl   = 0;
       unsigned int                     steps_since_start = 0;
       SolveStatistics                  statistics;
       /// Rigid-node model: velocity dof -> grain whose rigid velocity it is
