@@ -13,6 +13,7 @@ rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
 source "$src/scripts/mpi_env.sh"
+source "$src/tests/tools/sphere_in_stream.sh"
 printf '0 0 0 5e-4 0.1 0.02 0 0 0 0\n' > grain.txt
 scene() { # directory restart
   cat <<PRM
@@ -27,43 +28,13 @@ end
 subsection coupling
   set readapt fraction = 0.2
 end
-subsection mesh
-  set lower corner = -4e-3, -4e-3, -4e-3
-  set upper corner = 4e-3, 4e-3, 4e-3
-  set cells per diameter = 3
-end
-subsection grains
-  set source = file
-  set file = grain.txt
-end
 subsection dem
   subsection material
     set density = 2650
   end
 end
-subsection fluid
-  set density = 1000
-  set viscosity = 1e-2
-  set theta = 1e6
-  set solid model = penalization
-end
-subsection fluid solver
-  set linear tolerance = 1e-12
-end
-subsection boundary conditions
-  subsection x min
-    set type = velocity
-    set velocity = 2e-3, 0, 0
-  end
-  subsection x max
-    set type = pressure
-  end
-end
-subsection output
-  set directory = $1
-  set verbosity = quiet
-end
 PRM
+  sphere_in_stream grain.txt "$1"
 }
 scene whole false > whole.prm
 "$softsand" whole.prm > whole.log 2>&1

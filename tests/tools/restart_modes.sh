@@ -19,6 +19,7 @@ rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
 source "$src/scripts/mpi_env.sh"
+source "$src/tests/tools/sphere_in_stream.sh"
 
 # Two 3 x 3 layers of 0.1 mm grains, the upper one above the lower one.
 python3 - > layers.txt <<'PY'
@@ -82,44 +83,14 @@ subsection simulation control
   set checkpoint interval = 2
   set restart = $2
 end
-subsection mesh
-  set lower corner = -4e-3, -4e-3, -4e-3
-  set upper corner = 4e-3, 4e-3, 4e-3
-  set cells per diameter = 3
-end
-subsection grains
-  set source = file
-  set file = sphere.txt
-end
-subsection fluid
-  set density = 1000
-  set viscosity = 1e-2
-  set theta = 1e6
-  set solid model = penalization
-end
-subsection fluid solver
-  set linear tolerance = 1e-12
-end
-subsection boundary conditions
-  subsection x min
-    set type = velocity
-    set velocity = 2e-3, 0, 0
-  end
-  subsection x max
-    set type = pressure
-  end
-end
-subsection output
-  set directory = $1
-  set verbosity = quiet
-end
 PRM
+  sphere_in_stream sphere.txt "$1"
 }
 
 for mode in granular transient; do
   case $mode in
-    granular)  stop=130 last=260 checkpoint=100 ;;
-    transient) stop=5 last=8 checkpoint=4 ;;
+    granular)  stop=130 checkpoint=100 ;;
+    transient) stop=5 checkpoint=4 ;;
   esac
   $mode $mode-whole false 1000000 > $mode-whole.prm
   "$softsand" $mode-whole.prm > $mode-whole.log 2>&1
