@@ -51,7 +51,8 @@ namespace softsand
       statistics = std::make_unique<io::StatisticsFile>(
         p.output.directory + "/statistics.txt",
         mpi_communicator,
-        restart ? long(first_step) : io::StatisticsFile::new_file);
+        restart ? long(first_step) : io::StatisticsFile::new_file,
+        dim);
       fluid.create_solver(false);
 
       if (p.simulation_control.is_steady())

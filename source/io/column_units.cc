@@ -9,7 +9,7 @@ namespace softsand
   namespace io
   {
     std::string
-    column_unit(const std::string &column)
+    column_unit(const std::string &column, const unsigned int dim)
     {
       // First match wins: exact names, then families (grain0_vx, wall_0_*,
       // piston_3_*, ring_pressure_2, ...).
@@ -30,9 +30,25 @@ namespace softsand
         {std::regex("velocity_l2_error"), "m^2.5/s"},
         {std::regex("velocity_h1_error"), "m^1.5/s"},
         {std::regex("pressure_l2_error"), "Pa m^1.5"}};
+      // 2D: the extensive quantities per metre of depth, the error norms
+      // integrated over an area instead of a volume.
+      static const std::vector<std::pair<std::string, std::string>>
+        per_depth = {{"J", "J/m"},
+                     {"N", "N/m"},
+                     {"m^3/s", "m^2/s"},
+                     {"m^3", "m^2"},
+                     {"m^2.5/s", "m^2/s"},
+                     {"m^1.5/s", "m/s"},
+                     {"Pa m^1.5", "Pa m"}};
       for (const auto &[pattern, unit] : units)
         if (std::regex_match(column, pattern))
-          return unit;
+          {
+            if (dim == 2)
+              for (const auto &[in_3d, in_2d] : per_depth)
+                if (unit == in_3d)
+                  return in_2d;
+            return unit;
+          }
       return "-";
     }
   } // namespace io

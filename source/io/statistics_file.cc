@@ -16,9 +16,11 @@ namespace softsand
 
     StatisticsFile::StatisticsFile(const std::string &filename,
                                    const MPI_Comm     comm,
-                                   const long         resume_after_step)
+                                   const long         resume_after_step,
+                                   const unsigned int dim)
       : is_writer(Utilities::MPI::this_mpi_process(comm) == 0)
       , filename(filename)
+      , dim(dim)
     {
       if (resume_after_step >= 0)
         {
@@ -134,11 +136,12 @@ namespace softsand
               for (unsigned int i = 0; i < columns.size(); ++i)
                 file << (i == 0 ? "" : " ") << columns[i];
               file << "\n# softsand statistics, " << columns.size()
-                   << " columns (SI units of a 3D scene; glossary: "
-                      "doc/statistics_columns.md):\n";
+                   << " columns (SI units of a " << dim << "D scene"
+                   << (dim == 2 ? ", per metre of depth" : "")
+                   << "; glossary: doc/statistics_columns.md):\n";
               for (unsigned int i = 0; i < columns.size(); ++i)
                 file << "# " << i + 1 << ": " << columns[i] << " ("
-                     << column_unit(columns[i]) << ")\n";
+                     << column_unit(columns[i], dim) << ")\n";
             }
         }
       // Columns fixed by the first row; a quantity that no longer exists

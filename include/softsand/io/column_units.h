@@ -8,12 +8,14 @@ namespace softsand
   namespace io
   {
     /**
-     * The SI unit of a statistics column of a 3D scene, by its name ("-" for
-     * a number without unit; 2D scenes count per metre of depth). The
-     * glossary of the columns is doc/statistics_columns.md.
+     * The SI unit of a statistics column, by its name ("-" for a number
+     * without unit). A 2D scene is a slice of unit depth: its forces,
+     * energies, flow rates, volumes and error norms count per metre of
+     * depth (N/m, J/m, m^2/s, m^2, ...). The glossary of the columns is
+     * doc/statistics_columns.md.
      */
     std::string
-    column_unit(const std::string &column);
+    column_unit(const std::string &column, const unsigned int dim = 3);
   } // namespace io
 } // namespace softsand
 

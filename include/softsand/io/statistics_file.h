@@ -24,10 +24,12 @@ namespace softsand
     public:
       /// A new table, or with @p resume_after_step >= 0 the existing one
       /// continued after its rows up to that step (a restarted run: rows the
-      /// stopped run wrote after its checkpoint are dropped).
+      /// stopped run wrote after its checkpoint are dropped). The header
+      /// names the units of a scene of dimension @p dim.
       StatisticsFile(const std::string &filename,
                      const MPI_Comm     comm,
-                     const long         resume_after_step = new_file);
+                     const long         resume_after_step = new_file,
+                     const unsigned int dim               = 3);
 
       static constexpr long new_file = -1;
 
@@ -48,6 +50,7 @@ namespace softsand
     private:
       bool                                      is_writer;
       std::string                               filename;
+      unsigned int                              dim;
       std::ofstream                             file;
       std::vector<std::string>                  columns;
       std::vector<std::pair<std::string, double>> row;
