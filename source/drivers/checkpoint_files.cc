@@ -80,6 +80,15 @@ namespace softsand
     }
 
 
+    void
+    check_checkpoint_info(const std::istream &info, const std::string &directory)
+    {
+      AssertThrow(!info.fail(),
+                  ExcMessage("The checkpoint <" + directory +
+                             "/checkpoint.info> is truncated or corrupt."));
+    }
+
+
     std::ifstream
     open_checkpoint_file(const std::string &name)
     {

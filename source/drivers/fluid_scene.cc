@@ -175,9 +175,7 @@ namespace softsand
       const std::string  dir  = parameters.output.directory;
       std::istringstream info = read_checkpoint_info(dir, "transient");
       info >> first_step >> first_time >> first_steps_done;
-      AssertThrow(!info.fail(),
-                  ExcMessage("The checkpoint <" + dir +
-                             "/checkpoint.info> is truncated or corrupt."));
+      check_checkpoint_info(info, dir);
       // The coarse mesh as at the start, then the saved refinement; the
       // fields are read once the solver exists (march_in_time()).
       fluid.make_mesh(false, false);

@@ -91,9 +91,7 @@ namespace softsand
       unsigned long      step = 0;
       double             time = 0;
       info >> step >> time >> settled_rows >> max_servo_error;
-      AssertThrow(!info.fail(),
-                  ExcMessage("The checkpoint <" + dir +
-                             "/checkpoint.info> is truncated or corrupt."));
+      check_checkpoint_info(info, dir);
       std::ifstream in = open_checkpoint_file(checkpoint_base(dir, step) + ".dem");
       dem->load_state(in);
       first_step = step;

@@ -125,7 +125,6 @@ namespace softsand
       const TrilinosWrappers::BlockSparseMatrix &pressure_mass_matrix,
       const TrilinosWrappers::BlockSparseMatrix *pressure_laplace_matrix,
       const std::vector<std::vector<bool>>      &velocity_constant_modes,
-      const bool                                 convection,
       const unsigned int                         amg_sweeps,
       const std::string                         &velocity_smoother,
       const SolverParameters::Schur              schur,
@@ -139,7 +138,6 @@ namespace softsand
                     schur == SolverParameters::Schur::least_squares_commutator)
       , inner_tolerance(inner_tolerance)
     {
-      (void)convection;
       if (direct_velocity_solve)
         {
           velocity_direct =

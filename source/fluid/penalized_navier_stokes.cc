@@ -1147,7 +1147,6 @@ namespace softsand
           &pressure_laplace_matrix :
           nullptr,
         constant_modes,
-        convection,
         velocity_amg_sweeps_in_use(),
         solver_parameters.velocity_amg_smoother ==
             SolverParameters::AmgSmoother::chebyshev ?

@@ -39,6 +39,11 @@ namespace softsand
     std::istringstream
     read_checkpoint_info(const std::string &directory, const std::string &mode);
 
+    /// Stop the run if reading the fields of the directory's checkpoint.info
+    /// from @p info failed (a truncated or corrupt file).
+    void
+    check_checkpoint_info(const std::istream &info, const std::string &directory);
+
     /// Open a file of the checkpoint for reading (binary), or stop the run
     /// with a message naming it.
     std::ifstream

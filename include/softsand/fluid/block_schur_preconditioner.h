@@ -81,7 +81,6 @@ namespace softsand
         const TrilinosWrappers::BlockSparseMatrix &pressure_mass_matrix,
         const TrilinosWrappers::BlockSparseMatrix *pressure_laplace_matrix,
         const std::vector<std::vector<bool>>      &velocity_constant_modes,
-        const bool                                 convection,
         const unsigned int                         amg_sweeps,
         const std::string           &velocity_smoother = "Chebyshev",
         const SolverParameters::Schur schur = SolverParameters::Schur::mass,
@@ -98,7 +97,7 @@ namespace softsand
       TrilinosWrappers::PreconditionAMG          velocity_amg;
       /// A sparse direct factorization of the velocity block instead of
       /// the AMG V-cycle (small problems; diagnosis of convective blocks).
-      mutable SolverControl                      direct_control;
+      SolverControl                              direct_control;
       std::unique_ptr<TrilinosWrappers::SolverDirect> velocity_direct;
       TrilinosWrappers::PreconditionILU          pressure_mass_ilu;
       TrilinosWrappers::PreconditionAMG          pressure_laplace_amg;
