@@ -148,6 +148,14 @@ namespace softsand
         const double                             inner_tolerance      = 0;
         mutable VectorType                       tmp_u, tmp_u2, tmp_p, tmp_p2;
 
+      public:
+        /// Inner CG solves on X so far, and their iterations (the cost of
+        /// the commutator: two solves per application).
+        mutable unsigned int inner_solves     = 0;
+        mutable unsigned int inner_iterations = 0;
+
+      private:
+
         /// dst = -X^-1 (B D^-1 A D^-1 B^T + C) X^-1 src on coupled rows.
         void
         apply_commutator(VectorType &dst, const VectorType &src) const
@@ -189,6 +197,8 @@ namespace softsand
             }
           catch (const SolverControl::NoConvergence &)
             {}
+          ++inner_solves;
+          inner_iterations += control.last_step();
         }
       };
     } // namespace
@@ -872,6 +882,11 @@ namespace softsand
       // the reactions and the grains' step, so that the peak memory is the
       // larger of the two phases rather than their sum.
       const unsigned int iterations = rhs_norm > 0 ? control.last_step() : 0;
+      if (preconditioner.inner_solves > 0)
+        pcout << "      commutator: " << preconditioner.inner_solves
+              << " inner CG solves on X, "
+              << preconditioner.inner_iterations / preconditioner.inner_solves
+              << " iterations each on average" << std::endl;
       matrix_free_data.reset();
       rhs.reinit(0);
       lifting.reinit(0);
