@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
 namespace softsand
 {
@@ -26,14 +27,25 @@ namespace softsand
       prm.declare_entry(
         "geometry",
         "box",
-        Patterns::Selection("box|cylinder"),
+        Patterns::Selection("box|cylinder|file"),
         "box: the box between the corners; its faces are the boundary "
         "conditions' x min ... z max (boundary ids 0-5). cylinder (3D): the "
         "circular cylinder inscribed in that box along 'cylinder axis' (a "
         "permeameter): its ends are the box faces normal to the axis and "
         "keep their names and ids; its mantle, boundary id 6, is a no-slip "
         "wall, meshed as an inscribed 32-gon. The box's cross-section normal "
-        "to the axis must be square: its half edge is the radius.");
+        "to the axis must be square: its half edge is the radius. file: the "
+        "quadrilateral / hexahedral gmsh mesh of 'mesh file' as the coarse "
+        "mesh, refined around grains like the others; its boundary faces' "
+        "physical tags 0-5 take the conditions of x min ... z max (velocity, "
+        "pressure, no slip, moving wall or function), every other tag is a "
+        "no-slip wall; it must lie inside the box between the corners (the "
+        "grains' and walls' frame).");
+      prm.declare_entry("mesh file",
+                        "",
+                        Patterns::Anything(),
+                        "geometry = file: path of the gmsh mesh (.msh, "
+                        "format 2 or 4), relative to the working directory.");
       prm.declare_entry("cylinder axis",
                         "z",
                         Patterns::Selection("x|y|z"),
@@ -100,7 +112,24 @@ namespace softsand
                                   "corner's (" +
                                     prm.get("lower corner") + ")");
       geometry      = prm.get("geometry") == "cylinder" ? Geometry::cylinder :
+                      prm.get("geometry") == "file"     ? Geometry::file :
                                                           Geometry::box;
+      mesh_file     = prm.get("mesh file");
+      if (geometry == Geometry::file)
+        {
+          if (mesh_file.empty() || !std::ifstream(mesh_file))
+            base::throw_invalid_parameter(
+              "mesh/mesh file",
+              mesh_file,
+              "geometry = file needs a readable gmsh mesh (.msh); the path "
+              "is relative to the working directory");
+          if (!Utilities::trim(prm.get("coarse cells")).empty())
+            base::throw_invalid_parameter(
+              "mesh/coarse cells",
+              prm.get("coarse cells"),
+              "geometry = file takes its coarse cells from the mesh file: "
+              "leave it empty");
+        }
       cylinder_axis = prm.get("cylinder axis") == "x" ? 0 :
                       prm.get("cylinder axis") == "y" ? 1 :
                                                         2;

@@ -51,7 +51,8 @@ namespace softsand
         BoundingBox<dim>(std::make_pair(mesh.lower_corner, mesh.upper_corner)),
         mesh.geometry == MeshParameters<dim>::Geometry::cylinder ?
           mesh.cylinder_axis :
-          numbers::invalid_unsigned_int);
+          numbers::invalid_unsigned_int,
+        mesh.geometry == MeshParameters<dim>::Geometry::file);
       output.parse_parameters(prm);
       postprocessing.parse_parameters(prm);
       convergence_study.parse_parameters(prm);

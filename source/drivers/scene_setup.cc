@@ -3,6 +3,7 @@
 #include <softsand/base/parameter_tools.h>
 #include <softsand/base/warnings.h>
 #include <softsand/drivers/cylinder_mesh.h>
+#include <softsand/drivers/file_mesh.h>
 #include <softsand/drivers/scene_setup.h>
 #include <softsand/io/grain_file.h>
 
@@ -102,6 +103,11 @@ namespace softsand
             make_cylinder_mesh(triangulation, m);
             return;
           }
+      if (m.geometry == core::MeshParameters<dim>::Geometry::file)
+        {
+          read_file_mesh(triangulation, m);
+          return;
+        }
       std::vector<unsigned int> cells = m.coarse_cells;
       double shortest = std::numeric_limits<double>::max();
       for (unsigned int d = 0; d < dim; ++d)

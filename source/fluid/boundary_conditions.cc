@@ -8,6 +8,8 @@
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include <limits>
+
 namespace softsand
 {
   namespace fluid
@@ -75,10 +77,12 @@ namespace softsand
     void
     BoundaryConditions<dim>::parse_parameters(ParameterHandler       &prm,
                                               const BoundingBox<dim> &box,
-                                              const unsigned int      axis)
+                                              const unsigned int      axis,
+                                              const bool              file_mesh)
     {
       domain        = box;
       cylinder_axis = axis;
+      from_file     = file_mesh;
       prm.enter_subsection("boundary conditions");
       for (unsigned int b = 0; b < n_faces; ++b)
         {
@@ -129,6 +133,15 @@ namespace softsand
                 face_name(2 * cylinder_axis) + "' and '" +
                 face_name(2 * cylinder_axis + 1) +
                 "', its mantle is a no-slip wall. Leave this face at no slip");
+          if (from_file &&
+              (f.type == Type::flow_rate || f.type == Type::symmetry))
+            base::throw_invalid_parameter(
+              "boundary conditions/" + face_name(b) + "/type",
+              prm.get("type"),
+              "mesh/geometry = file: the faces tagged " + std::to_string(b) +
+                " need not be a plane of the box, which a flow rate (its "
+                "area) and a symmetry condition (its normal) assume: use "
+                "velocity, function, pressure, no slip or moving wall");
           if (f.type == Type::flow_rate)
             {
               // Uniform velocity into the domain through this face.
@@ -172,6 +185,8 @@ namespace softsand
     double
     BoundaryConditions<dim>::face_area(const unsigned int b) const
     {
+      if (from_file)
+        return std::numeric_limits<double>::quiet_NaN();
       if (cylinder_axis != numbers::invalid_unsigned_int)
         {
           const double radius =

@@ -1472,7 +1472,6 @@ namespace softsand
       const double       dt,
       const unsigned int bdf_order)
     {
-      using BC = BoundaryConditions<dim>;
       Tensor<1, dim> force;
       // Rows of velocity nodes on constrained faces: each cell adds its
       // share of F - A u, the force of the fluid on those nodes (the sign
@@ -1510,12 +1509,29 @@ namespace softsand
             }
         };
       assemble(kind, dt, bdf_order, &residual, &touches_constrained_face);
-      // Pressure faces: the fluid pushes with p_b on the outward normal.
-      for (unsigned int id = 0; id < BC::n_faces; ++id)
-        if (!boundary_conditions.imposes_velocity(id))
-          force[id / 2] += (id % 2 == 0 ? -1. : 1.) *
-                           boundary_conditions.face(id).pressure *
-                           boundary_conditions.face_area(id);
+      // Pressure faces: the fluid pushes with p_b on the outward normal,
+      // integrated over the mesh's faces (a cylinder's end is a 32-gon, a
+      // mesh file's faces need not be planes of the box), so that a uniform
+      // pressure exerts no net force.
+      FEFaceValues<dim> face_values(fe,
+                                    QGauss<dim - 1>(2),
+                                    update_normal_vectors | update_JxW_values);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                !boundary_conditions.imposes_velocity(
+                  cell->face(f)->boundary_id()))
+              {
+                face_values.reinit(cell, f);
+                const double p_b =
+                  boundary_conditions.face(cell->face(f)->boundary_id())
+                    .pressure;
+                for (unsigned int q = 0; q < face_values.n_quadrature_points;
+                     ++q)
+                  force += p_b * face_values.normal_vector(q) *
+                           face_values.JxW(q);
+              }
       last_boundary_force = Utilities::MPI::sum(force, mpi_communicator);
     }
 

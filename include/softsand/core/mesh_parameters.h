@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <string>
 #include <vector>
 
 namespace softsand
@@ -18,7 +19,9 @@ namespace softsand
      * (faces with boundary ids 0..2 dim-1 in the order x min, x max, y min,
      * y max, z min, z max), or the circular cylinder inscribed in it: its
      * ends keep the ids of the box faces they lie on and its mantle has
-     * id 2 dim (a no-slip wall).
+     * id 2 dim (a no-slip wall). A mesh file (gmsh) gives any shape: its
+     * boundary tags 0..2 dim-1 take the conditions of x min ... z max, every
+     * other tag is a no-slip wall (id 2 dim); the box must contain it.
      */
     template <int dim>
     struct MeshParameters
@@ -26,7 +29,8 @@ namespace softsand
       enum class Geometry
       {
         box,
-        cylinder
+        cylinder,
+        file
       };
 
       Point<dim> lower_corner;
@@ -34,6 +38,8 @@ namespace softsand
       Geometry   geometry = Geometry::box;
       /// The cylinder's axis: the coordinate direction 0, 1 or 2.
       unsigned int cylinder_axis = dim - 1;
+      /// geometry = file: the gmsh mesh (.msh) of the domain.
+      std::string mesh_file;
       /// Half the edge of the box's square cross-section normal to the axis.
       double
       cylinder_radius() const;

@@ -64,11 +64,23 @@ namespace softsand
       declare_parameters(ParameterHandler &prm);
       /// @p domain gives face areas for flow-rate conditions; a cylindrical
       /// domain inscribed in it has its axis along @p cylinder_axis
-      /// (numbers::invalid_unsigned_int: the box itself).
+      /// (numbers::invalid_unsigned_int: the box itself). @p file_mesh: the
+      /// domain is a mesh file's (mesh/geometry = file), whose faces with
+      /// ids 0..2 dim-1 need not be planes of the box: no flow-rate or
+      /// symmetry conditions, and a wall id (cylinder_wall_id) for the rest.
       void
       parse_parameters(ParameterHandler       &prm,
                        const BoundingBox<dim> &domain,
-                       const unsigned int cylinder_axis = numbers::invalid_unsigned_int);
+                       const unsigned int cylinder_axis = numbers::invalid_unsigned_int,
+                       const bool         file_mesh = false);
+
+      /// Whether the domain comes from a mesh file (face areas then come
+      /// from the mesh, not from the box).
+      bool
+      file_mesh() const
+      {
+        return from_file;
+      }
 
       /// Boundary ids of the domain: the box faces, and for a cylinder its
       /// mantle (cylinder_wall_id) after them.
@@ -76,7 +88,9 @@ namespace softsand
       n_boundary_ids() const
       {
         return n_faces +
-               (cylinder_axis != numbers::invalid_unsigned_int ? 1 : 0);
+               (cylinder_axis != numbers::invalid_unsigned_int || from_file ?
+                  1 :
+                  0);
       }
 
       /// Add the velocity constraints of all faces at @p time.
@@ -138,7 +152,7 @@ namespace softsand
       inflow_velocity() const;
 
       /// Area of face @p boundary_id of the box (of the circle for a
-      /// cylinder's end).
+      /// cylinder's end); not defined for a mesh file's domain (NaN).
       double
       face_area(const unsigned int boundary_id) const;
 
@@ -148,6 +162,7 @@ namespace softsand
       PressureRegion<dim>           inlet, perimeter;
       BoundingBox<dim>              domain;
       unsigned int cylinder_axis = numbers::invalid_unsigned_int;
+      bool         from_file     = false;
     };
   } // namespace fluid
 } // namespace softsand

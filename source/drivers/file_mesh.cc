@@ -1,0 +1,74 @@
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <softsand/base/parameter_tools.h>
+#include <softsand/drivers/file_mesh.h>
+#include <softsand/fluid/boundary_conditions.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace softsand
+{
+  namespace drivers
+  {
+    template <int dim>
+    void
+    read_file_mesh(Triangulation<dim>              &triangulation,
+                   const core::MeshParameters<dim> &mesh)
+    {
+      std::ifstream in(mesh.mesh_file);
+      try
+        {
+          GridIn<dim> grid_in;
+          grid_in.attach_triangulation(triangulation);
+          grid_in.read_msh(in);
+        }
+      catch (const std::exception &e)
+        {
+          std::string what = e.what();
+          // deal.II's messages carry a stack trace: keep their first lines.
+          const auto trace = what.find("Stacktrace");
+          if (trace != std::string::npos)
+            what = what.substr(0, trace);
+          base::throw_invalid_parameter(
+            "mesh/mesh file",
+            mesh.mesh_file,
+            "deal.II could not read it as a gmsh mesh of " +
+              std::to_string(dim) + "D quadrilaterals/hexahedra (" +
+              Utilities::trim(what) + ")");
+        }
+
+      const types::boundary_id wall =
+        fluid::BoundaryConditions<dim>::cylinder_wall_id;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        for (const auto f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              cell->face(f)->boundary_id() > wall)
+            cell->face(f)->set_boundary_id(wall);
+
+      // The grains, walls and rings live in the box: the mesh must fit.
+      const BoundingBox<dim> box = GridTools::compute_bounding_box(triangulation);
+      const double tolerance = 1e-9 * box.side_length(0);
+      for (unsigned int d = 0; d < dim; ++d)
+        if (box.lower_bound(d) < mesh.lower_corner[d] - tolerance ||
+            box.upper_bound(d) > mesh.upper_corner[d] + tolerance)
+          {
+            std::ostringstream extent, corners;
+            extent << box.get_boundary_points().first << " to "
+                   << box.get_boundary_points().second;
+            corners << mesh.lower_corner << " to " << mesh.upper_corner;
+            base::throw_invalid_parameter(
+              "mesh/lower corner, mesh/upper corner",
+              corners.str(),
+              "the mesh of '" + mesh.mesh_file + "' spans " + extent.str() +
+                " m: give a box that contains it");
+          }
+    }
+
+    template void
+    read_file_mesh(Triangulation<2> &, const core::MeshParameters<2> &);
+    template void
+    read_file_mesh(Triangulation<3> &, const core::MeshParameters<3> &);
+  } // namespace drivers
+} // namespace softsand
