@@ -69,7 +69,9 @@ main(int argc, char **argv)
           40);
   compare("small Hele-Shaw cell, first coupled step",
           scene_text("hele_shaw_small") +
-            "subsection simulation control\n set max time steps = 1\nend\n"
+            "subsection simulation control\n set max time steps = 1\n"
+            " set time step = 1e-3\nend\n"
+            "subsection coupling\n set fluid model = quasi-steady\nend\n"
             "subsection grains\n set file = " + std::string(SOURCE_DIR) +
             "/../parameters/packs/hele_shaw_small.txt\nend\n",
           "radial_permeability",

@@ -157,6 +157,7 @@ main(int argc, char **argv)
         "subsection simulation control\n set max time steps = 1\n"
         " set time step = 1e-4\nend\n"
         "subsection coupling\n set fluid model = " + model + "\nend\n"
+        "subsection fluid\n set free contact cells = automatic\nend\n"
         "subsection grains\n set file = " + std::string(SOURCE_DIR) +
         "/../parameters/packs/hele_shaw_small.txt\nend\n");
       deallog << "small Hele-Shaw, " << model << ": freed solid fraction "
