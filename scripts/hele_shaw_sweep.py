@@ -12,7 +12,8 @@ prints a table: p_i, coupling steps and time reached, the fracture area at
 the start (the pore space next to the inlet: the grains' centres stay r + R
 from the inlet axis, so a thin open ring surrounds it) and at the end, its
 largest area during the run and its growth over the start, the radial
-permeability at the end over the start, the largest grain speed at the
+permeability at the end over the start (- for the transient model, whose
+flow starts from rest), the largest grain speed at the
 end, and the wall time. A pressure "fractures" when the largest area
 exceeds the start by more than --open-area (m^2; default half the
 projected area of a mean grain, 0.72 mm^2). The critical pressure is
