@@ -1407,44 +1407,47 @@ namespace softsand
 
     template <int dim>
     void
-    PenalizedNavierStokes<dim>::compute_rigid_reactions(
-      const Assembly     kind,
-      const double       dt,
-      const unsigned int bdf_order)
+    PenalizedNavierStokes<dim>::compute_reactions(const Assembly     kind,
+                                                  const double       dt,
+                                                  const unsigned int bdf_order)
     {
+      // One assembly pass over the cells that carry either reaction: the
+      // rigid nodes' (F - A u of each constrained node's row: the force of
+      // the fluid on that node) and the velocity-constrained boundary
+      // faces' (the same residual summed over their rows).
       rigid_reactions.clear();
       // Every rank decides alike: assemble() below has collectives, and a
       // rank without rigid nodes (or without cells) must still reach them.
-      if (Utilities::MPI::max(rigid_dof_grain.empty() ? 0u : 1u,
-                              mpi_communicator) == 0)
-        return;
+      const bool rigid = Utilities::MPI::max(rigid_dof_grain.empty() ? 0u : 1u,
+                                             mpi_communicator) != 0;
       const Quadrature<dim> nodes(fe.get_unit_support_points());
       FEValues<dim>  fe_values(fe, nodes, update_quadrature_points);
       Vector<double> local_solution(fe.n_dofs_per_cell());
-      const CellCallback reaction =
+      Tensor<1, dim> force;
+
+      const auto add_rigid_reactions =
         [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
             const FullMatrix<double>                             &matrix,
             const Vector<double>                                 &rhs,
             const std::vector<types::global_dof_index>           &dofs) {
           fe_values.reinit(cell);
-          cell->get_dof_values(solution, local_solution);
           const auto add = [&](const unsigned int k, const int grain,
                                const double weight) {
             // Force of the fluid on the node: F_k - (A u)_k.
             double r = rhs(k);
             for (unsigned int j = 0; j < dofs.size(); ++j)
               r -= matrix(k, j) * local_solution(j);
-            Tensor<1, dim> force;
-            force[fe.system_to_component_index(k).first] = weight * r;
+            Tensor<1, dim> f;
+            f[fe.system_to_component_index(k).first] = weight * r;
             rigid_reactions.emplace_back(grain,
                                          fe_values.quadrature_point(k),
-                                         force);
+                                         f);
           };
           for (unsigned int k = 0; k < dofs.size(); ++k)
             {
-              const auto rigid = rigid_dof_grain.find(dofs[k]);
-              if (rigid != rigid_dof_grain.end())
-                add(k, rigid->second, 1.);
+              const auto node = rigid_dof_grain.find(dofs[k]);
+              if (node != rigid_dof_grain.end())
+                add(k, node->second, 1.);
               const auto hanging = hanging_rigid_parents.find(dofs[k]);
               if (hanging != hanging_rigid_parents.end())
                 for (const auto &[parent, weight] : hanging->second)
@@ -1452,51 +1455,36 @@ namespace softsand
             }
         };
       // Reactions live on rigid nodes and on hanging nodes of rigid
-      // parents: skip the other cells.
+      // parents.
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-      const CellFilter has_rigid_nodes = [&](const auto &cell) {
+      const auto has_rigid_nodes = [&](const auto &cell) {
+        if (!rigid)
+          return false;
         cell->get_dof_indices(cell_dofs);
         for (const auto i : cell_dofs)
           if (rigid_dof_grain.count(i) || hanging_rigid_parents.count(i))
             return true;
         return false;
       };
-      assemble(kind, dt, bdf_order, &reaction, &has_rigid_nodes);
-    }
 
-
-    template <int dim>
-    void
-    PenalizedNavierStokes<dim>::compute_boundary_reaction(
-      const Assembly     kind,
-      const double       dt,
-      const unsigned int bdf_order)
-    {
-      Tensor<1, dim> force;
-      // Rows of velocity nodes on constrained faces: each cell adds its
-      // share of F - A u, the force of the fluid on those nodes (the sign
-      // of the grains' rigid-node reactions).
       std::vector<bool> on_face(fe.n_dofs_per_cell());
-      const CellFilter touches_constrained_face = [&](const auto &cell) {
+      const auto touches_constrained_face = [&](const auto &cell) {
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
               boundary_conditions.imposes_velocity(cell->face(f)->boundary_id()))
             return true;
         return false;
       };
-      Vector<double> local_solution(fe.n_dofs_per_cell());
-      const CellCallback residual =
+      const auto add_boundary_reaction =
         [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
             const FullMatrix<double>                             &matrix,
-            const Vector<double>                                 &rhs,
-            const std::vector<types::global_dof_index> &) {
+            const Vector<double>                                 &rhs) {
           std::fill(on_face.begin(), on_face.end(), false);
           for (const auto f : cell->face_indices())
             if (cell->face(f)->at_boundary() &&
                 boundary_conditions.imposes_velocity(cell->face(f)->boundary_id()))
               for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
                 on_face[fe.face_to_cell_index(k, f)] = true;
-          cell->get_dof_values(solution, local_solution);
           for (unsigned int k = 0; k < on_face.size(); ++k)
             {
               const unsigned int c = fe.system_to_component_index(k).first;
@@ -1508,7 +1496,23 @@ namespace softsand
               force[c] += r;
             }
         };
-      assemble(kind, dt, bdf_order, &residual, &touches_constrained_face);
+
+      const CellFilter either = [&](const auto &cell) {
+        return has_rigid_nodes(cell) || touches_constrained_face(cell);
+      };
+      const CellCallback both =
+        [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
+            const FullMatrix<double>                             &matrix,
+            const Vector<double>                                 &rhs,
+            const std::vector<types::global_dof_index>           &dofs) {
+          cell->get_dof_values(solution, local_solution);
+          if (has_rigid_nodes(cell))
+            add_rigid_reactions(cell, matrix, rhs, dofs);
+          if (touches_constrained_face(cell))
+            add_boundary_reaction(cell, matrix, rhs);
+        };
+      assemble(kind, dt, bdf_order, &both, &either);
+
       // Pressure faces: the fluid pushes with p_b on the outward normal,
       // integrated over the mesh's faces (a cylinder's end is a 32-gon, a
       // mesh file's faces need not be planes of the box), so that a uniform
@@ -1552,8 +1556,7 @@ namespace softsand
           solve_linear(false);
         }
       statistics.nonlinear_iterations = 1;
-      compute_rigid_reactions(Assembly::steady_stokes, dt, 1);
-      compute_boundary_reaction(Assembly::steady_stokes, dt, 1);
+      compute_reactions(Assembly::steady_stokes, dt, 1);
     }
 
 
@@ -1607,8 +1610,7 @@ namespace softsand
             {
               pseudo_time_cfl = 0;
               // The Picard operator at the converged state: A(u) u - f.
-              compute_rigid_reactions(Assembly::steady_picard, dt, 1);
-              compute_boundary_reaction(Assembly::steady_picard, dt, 1);
+              compute_reactions(Assembly::steady_picard, dt, 1);
               return;
             }
         }
@@ -1655,8 +1657,7 @@ namespace softsand
       assemble(Assembly::transient, dt, order);
       solve_linear(true);
       statistics.nonlinear_iterations = 1;
-      compute_rigid_reactions(Assembly::transient, dt, order);
-      compute_boundary_reaction(Assembly::transient, dt, order);
+      compute_reactions(Assembly::transient, dt, order);
 
       BlockVector change(owned_partitioning, mpi_communicator), u(change);
       change = solution;

@@ -315,20 +315,16 @@ namespace softsand
                const unsigned int  bdf_order,
                const CellCallback *cell_callback = nullptr,
                const CellFilter   *cell_filter   = nullptr);
-      /// The force of the fluid on the velocity-constrained boundary faces:
-      /// the residual F - A u of their rows, the exact discrete
-      /// reaction (hanging boundary nodes included: their parents lie on
-      /// the same faces).
+      /// After a solve, in one assembly pass: the rigid-node model's force
+      /// of the fluid on each constrained node, F - A u of its row (the
+      /// exact discrete reaction), and the force of the fluid on the
+      /// velocity-constrained boundary faces, the same residual of their
+      /// rows (hanging boundary nodes included: their parents lie on the
+      /// same faces) plus p_b on the pressure faces.
       void
-      compute_boundary_reaction(const Assembly     kind,
-                                const double       time_step,
-                                const unsigned int bdf_order);
-      /// Rigid-node model: the force of the fluid on each constrained node,
-      /// F - A u of its row (the exact discrete reaction), after a solve.
-      void
-      compute_rigid_reactions(const Assembly     kind,
-                              const double       time_step,
-                              const unsigned int bdf_order);
+      compute_reactions(const Assembly     kind,
+                        const double       time_step,
+                        const unsigned int bdf_order);
       /// Penalization with the nodes of cells wholly inside a grain
       /// constrained to its rigid velocity.
       bool
