@@ -26,17 +26,12 @@ namespace softsand
         }
       catch (const std::exception &e)
         {
-          std::string what = e.what();
-          // deal.II's messages carry a stack trace: keep their first lines.
-          const auto trace = what.find("Stacktrace");
-          if (trace != std::string::npos)
-            what = what.substr(0, trace);
           base::throw_invalid_parameter(
             "mesh/mesh file",
             mesh.mesh_file,
             "deal.II could not read it as a gmsh mesh of " +
               std::to_string(dim) + "D quadrilaterals/hexahedra (" +
-              Utilities::trim(what) + ")");
+              base::error_message(e) + ")");
         }
 
       const types::boundary_id wall =

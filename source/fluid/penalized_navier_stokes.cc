@@ -1497,8 +1497,13 @@ namespace softsand
             }
         };
 
+      // assemble() asks the filter about a cell right before it hands that
+      // cell to the callback: the filter's two answers are kept for it.
+      bool cell_has_rigid_nodes = false, cell_on_wall = false;
       const CellFilter either = [&](const auto &cell) {
-        return has_rigid_nodes(cell) || touches_constrained_face(cell);
+        cell_has_rigid_nodes = has_rigid_nodes(cell);
+        cell_on_wall         = touches_constrained_face(cell);
+        return cell_has_rigid_nodes || cell_on_wall;
       };
       const CellCallback both =
         [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
@@ -1506,9 +1511,9 @@ namespace softsand
             const Vector<double>                                 &rhs,
             const std::vector<types::global_dof_index>           &dofs) {
           cell->get_dof_values(solution, local_solution);
-          if (has_rigid_nodes(cell))
+          if (cell_has_rigid_nodes)
             add_rigid_reactions(cell, matrix, rhs, dofs);
-          if (touches_constrained_face(cell))
+          if (cell_on_wall)
             add_boundary_reaction(cell, matrix, rhs);
         };
       assemble(kind, dt, bdf_order, &both, &either);

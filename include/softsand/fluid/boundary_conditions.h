@@ -74,16 +74,8 @@ namespace softsand
                        const unsigned int cylinder_axis = numbers::invalid_unsigned_int,
                        const bool         file_mesh = false);
 
-      /// Whether the domain comes from a mesh file (face areas then come
-      /// from the mesh, not from the box).
-      bool
-      file_mesh() const
-      {
-        return from_file;
-      }
-
-      /// Boundary ids of the domain: the box faces, and for a cylinder its
-      /// mantle (cylinder_wall_id) after them.
+      /// Boundary ids of the domain: the box faces, and for a cylinder or a
+      /// mesh file the wall id (cylinder_wall_id) after them.
       unsigned int
       n_boundary_ids() const
       {
