@@ -10,7 +10,6 @@ kinematic pressure p / rho, which the readers below convert back.
 Used by scripts/benchmark_vs_openfoam.py; see benchmarks/openfoam/README.md.
 """
 import glob
-import math
 import os
 
 HEADER = """FoamFile
@@ -384,37 +383,3 @@ def iterations_to_settle(history, tolerance):
         if all(abs(v - last) <= tolerance * abs(last) for _, v in history[i:]):
             return n
     return history[-1][0]
-
-
-def read_force(directory):
-    """(iterations, total force vector in N) of the last forces row."""
-    files = sorted(glob.glob(os.path.join(directory, 'postProcessing',
-                                          'forces', '*', 'force.dat')))
-    last = None
-    for path in files:
-        with open(path) as f:
-            for line in f:
-                if line.strip() and not line.startswith('#'):
-                    last = line
-    if last is None:
-        return None, None
-    v = last.replace('(', ' ').replace(')', ' ').split()
-    return int(float(v[0])), tuple(float(x) for x in v[1:4])
-
-
-def read_plane_pressure(directory, i, rho):
-    """Area-averaged pressure (Pa) on cutting plane @p i at the end."""
-    files = sorted(glob.glob(os.path.join(directory, 'postProcessing',
-                                          'plane%d' % i, '*',
-                                          'surfaceFieldValue.dat')))
-    last = None
-    for path in files:
-        with open(path) as f:
-            for line in f:
-                if line.strip() and not line.startswith('#'):
-                    last = line
-    return None if last is None else rho * float(last.split()[1])
-
-
-def sphere_volume(spheres):
-    return sum(4 / 3 * math.pi * r ** 3 for *_, r in spheres)
