@@ -400,7 +400,9 @@ def report(name, case, results):
 
 def main():
     all_cases = cases()
-    ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    ap = argparse.ArgumentParser(
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('--cases', default=','.join(all_cases))
     ap.add_argument('--ranks', default='1,2')
     ap.add_argument('--workdir', default='output/benchmark_vs_openfoam')
