@@ -11,6 +11,7 @@ Used by scripts/benchmark_vs_openfoam.py; see benchmarks/openfoam/README.md.
 """
 import glob
 import os
+import re
 
 HEADER = """FoamFile
 {
@@ -48,17 +49,21 @@ class Case:
     @p faces maps each box face ('x min', ...) to one of
       ('velocity', (ux, uy, uz)), ('flow rate', Q) (uniform inflow),
       ('pressure', 0), ('symmetry', None), ('no slip', None).
-    @p planes: x positions of cutting planes whose area-averaged pressure
-    is written (the flow is along x).
+    @p planes: positions along the flow @p axis (0, 1, 2) of cutting planes
+    whose area-averaged pressure is written.
+    @p mantle_radius: the fluid is the inside of a cylinder of that radius
+    along @p axis through the box's centre (an analytic surface, refined
+    like the grains, a no-slip wall `mantle`); the box outside it is cut.
     """
 
     def __init__(self, lo, hi, blocks, spheres, level, faces, nu, rho,
                  planes=(), inside=None, end_iteration=20000,
                  tolerance=(1e-7, 1e-8), second_order_convection=False,
-                 ranks=1):
+                 ranks=1, axis=0, mantle_radius=None):
         self.lo, self.hi, self.blocks = lo, hi, blocks
         self.spheres, self.level, self.faces = spheres, level, faces
         self.nu, self.rho, self.planes = nu, rho, planes
+        self.axis, self.mantle_radius = axis, mantle_radius
         self.inside = inside
         self.end_iteration = end_iteration
         self.tolerance = tolerance
@@ -108,6 +113,19 @@ class Case:
             surfaces.append('        grain%d { level (%d %d); '
                             'patchInfo { type wall; } }' % (
                                 i, self.level, self.level))
+        if self.mantle_radius:
+            centre = [(a + b) / 2 for a, b in zip(self.lo, self.hi)]
+            ends = [list(centre), list(centre)]
+            length = self.hi[self.axis] - self.lo[self.axis]
+            ends[0][self.axis] = self.lo[self.axis] - length
+            ends[1][self.axis] = self.hi[self.axis] + length
+            geometry.insert(0, '    mantle { type searchableCylinder; '
+                            'point1 %s; point2 %s; radius %.9g; }' % (
+                                vec(ends[0]), vec(ends[1]),
+                                self.mantle_radius))
+            surfaces.insert(0, '        mantle { level (%d %d); '
+                            'patchInfo { type wall; } }' % (self.level,
+                                                            self.level))
         inside = self.inside or self._point_in_fluid()
         text = """castellatedMesh true;
 snap true;
@@ -225,8 +243,9 @@ mergeTolerance 1e-6;
             else:
                 u_bc.append('%s { type noSlip; }' % name)
                 p_bc.append('%s { type zeroGradient; }' % name)
-        u_bc.append('"grain.*" { type noSlip; }')
-        p_bc.append('"grain.*" { type zeroGradient; }')
+        walls = '"(grain.*|mantle)"' if self.mantle_radius else '"grain.*"'
+        u_bc.append('%s { type noSlip; }' % walls)
+        p_bc.append('%s { type zeroGradient; }' % walls)
         start = (0, 0, 0)
         for kind, value in self.faces.values():
             if kind == 'velocity':
@@ -247,6 +266,8 @@ mergeTolerance 1e-6;
         d = self.directory
         planes = ''
         for i, x in enumerate(self.planes):
+            point, normal = [0, 0, 0], [0, 0, 0]
+            point[self.axis], normal[self.axis] = x, 1
             planes += """    plane%d
     {
         type surfaceFieldValue;
@@ -257,7 +278,7 @@ mergeTolerance 1e-6;
         {
             type cuttingPlane;
             planeType pointAndNormal;
-            pointAndNormalDict { point (%.9g 0 0); normal (1 0 0); }
+            pointAndNormalDict { point %s; normal %s; }
             interpolate false;
         }
         operation areaAverage;
@@ -267,7 +288,7 @@ mergeTolerance 1e-6;
         writeInterval 10;
         log false;
     }
-""" % (i, i, x)
+""" % (i, i, vec(point), vec(normal))
         forces = """    forces
     {
         type forces;
@@ -373,6 +394,22 @@ def plane_pressure_history(directory, i, rho):
     return [(int(float(r[0])), rho * float(r[1])) for r in _rows(
         os.path.join(directory, 'postProcessing', 'plane%d' % i, '*',
                      'surfaceFieldValue.dat'))]
+
+
+def permeability_history(directory, planes, q, mu, rho):
+    """[(iteration, K = q mu L / dp)] between the two cutting planes at
+    @p planes, q the superficial velocity."""
+    p0, p1 = (plane_pressure_history(directory, i, rho) for i in (0, 1))
+    length = abs(planes[1] - planes[0])
+    return [(n, q * mu * length / (a - b))
+            for (n, a), (_, b) in zip(p0, p1) if a != b]
+
+
+def mesh_cells(directory):
+    """Cells of the mesh that snappyHexMesh wrote (its log's last count)."""
+    cells = re.findall(r'cells:(\d+)', open(os.path.join(
+        directory, 'log.snappyHexMesh')).read())
+    return int(cells[-1]) if cells else 0
 
 
 def iterations_to_settle(history, tolerance):

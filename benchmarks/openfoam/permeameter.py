@@ -16,7 +16,6 @@ OpenFOAM (benchmarks/openfoam/README.md).
 """
 import math
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -49,31 +48,11 @@ def main():
     case = foam_case.Case((-1.02 * R, -1.02 * R, z0), (1.02 * R, 1.02 * R, z1),
                           (blocks, blocks, int(round((z1 - z0) / h))),
                           grains, level, faces, MU / RHO, RHO, planes=planes,
-                          inside=(1.3e-7, 1.7e-7, z0 + 0.25 * BUFFER))
+                          inside=(1.3e-7, 1.7e-7, z0 + 0.25 * BUFFER),
+                          axis=2, mantle_radius=R)
     directory = os.path.join(workdir, 'level%d' % level)
     shutil.rmtree(directory, ignore_errors=True)
     case.write(directory)
-    # the mantle: a cylinder surface; the box outside it is cut away
-    path = os.path.join(directory, 'system', 'snappyHexMeshDict')
-    text = open(path).read()
-    text = text.replace('geometry\n{\n', 'geometry\n{\n    mantle { type '
-                        'searchableCylinder; point1 (0 0 -1); point2 (0 0 1); '
-                        'radius %.9g; }\n' % R, 1)
-    text = text.replace('    refinementSurfaces\n    {\n',
-                        '    refinementSurfaces\n    {\n        mantle { level '
-                        '(%d %d); patchInfo { type wall; } }\n'
-                        % (level, level), 1)
-    open(path, 'w').write(text)
-    for field in ('U', 'p'):
-        path = os.path.join(directory, '0', field)
-        text = open(path).read().replace('"grain.*"', '"(grain.*|mantle)"')
-        open(path, 'w').write(text)
-    # planes across the axis
-    path = os.path.join(directory, 'system', 'controlDict')
-    text = re.sub(r'point \(([-0-9.e]+) 0 0\); normal \(1 0 0\);',
-                  lambda m: 'point (0 0 %s); normal (0 0 1);' % m.group(1),
-                  open(path).read())
-    open(path, 'w').write(text)
     env = dict(os.environ, WM_PROJECT_DIR='/usr/share/openfoam')
     for app in (['blockMesh'], ['snappyHexMesh', '-overwrite'],
                 ['simpleFoam']):
@@ -84,13 +63,10 @@ def main():
         print('%s: %.1f s' % (app[0], time.time() - start), flush=True)
         if code:
             raise SystemExit('%s failed: see %s' % (app[0], directory))
-    p0, p1 = (foam_case.plane_pressure_history(directory, i, RHO)
-              for i in (0, 1))
-    q, length = Q / (math.pi * R * R), planes[1] - planes[0]
-    k = q * MU * length / (p0[-1][1] - p1[-1][1])
-    cells = re.findall(r'cells:(\d+)', open(os.path.join(
-        directory, 'log.snappyHexMesh')).read())[-1]
-    print('level %d: N = %.3g, %s cells, K = %.4g m^2' % (
+    k = foam_case.permeability_history(directory, planes,
+                                       Q / (math.pi * R * R), MU, RHO)[-1][1]
+    cells = foam_case.mesh_cells(directory)
+    print('level %d: N = %.3g, %d cells, K = %.4g m^2' % (
         level, d / (h / 2 ** level), cells, k))
 
 
