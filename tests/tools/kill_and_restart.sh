@@ -14,6 +14,7 @@ mkdir -p "$work"
 cd "$work"
 source "$src/scripts/mpi_env.sh"
 source "$src/tests/tools/sphere_in_stream.sh"
+source "$src/tests/tools/kill_after_checkpoint.sh"
 printf '0 0 0 5e-4 0.1 0.02 0 0 0 0\n' > grain.txt
 scene() { # directory restart
   cat <<PRM
@@ -49,16 +50,7 @@ killed_and_restarted() { # directory ranks
   else
     "$softsand" "$1.prm" > "$1.log" 2>&1 &
   fi
-  local runner=$!
-  for i in $(seq 1 1200); do
-    if [ -f "$1/checkpoint.info" ] &&
-       [ "$(head -1 "$1/checkpoint.info" | cut -d' ' -f1)" -ge 4 ]; then
-      break
-    fi
-    sleep 0.1
-  done
-  pkill -KILL -f "softsand $1.prm" || true
-  wait "$runner" 2> /dev/null || true
+  kill_after_checkpoint "$1" 4 $!
   local step
   step=$(head -1 "$1/checkpoint.info" | cut -d' ' -f1)
   echo "$1: $2 rank(s) killed after the checkpoint of step $step"

@@ -21,6 +21,7 @@ mkdir -p "$work"
 cd "$work"
 source "$src/scripts/mpi_env.sh"
 source "$src/tests/tools/sphere_in_stream.sh"
+source "$src/tests/tools/kill_after_checkpoint.sh"
 
 # Two 3 x 3 layers of 0.1 mm grains, the upper one above the lower one.
 python3 - > layers.txt <<'PY'
@@ -109,16 +110,7 @@ for mode in granular transient; do
     # checkpoint of step 4 or later is complete, before the end (step 8).
     $mode $mode-cut false 1000000 > $mode-cut.prm
     mpirun -np 2 "$softsand" $mode-cut.prm > $mode-cut.log 2>&1 &
-    runner=$!
-    for i in $(seq 1 1200); do
-      if [ -f $mode-cut/checkpoint.info ] &&
-         [ "$(head -1 $mode-cut/checkpoint.info | cut -d' ' -f1)" -ge $checkpoint ]; then
-        break
-      fi
-      sleep 0.1
-    done
-    pkill -KILL -f "softsand $mode-cut.prm" || true
-    wait "$runner" 2> /dev/null || true
+    kill_after_checkpoint $mode-cut $checkpoint $!
     step=$(head -1 $mode-cut/checkpoint.info | cut -d' ' -f1)
     [ "$step" -ge $checkpoint ] && [ "$step" -lt 8 ] ||
       { echo "FAIL: $mode: killed after the checkpoint of step $step"; exit 1; }
