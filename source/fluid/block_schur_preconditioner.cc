@@ -82,28 +82,45 @@ namespace softsand
       // have empty B rows: subtract it, then make the constrained
       // diagonals positive again and give zero diagonals the mean, so
       // that AMG and CG see a regular positive matrix (these rows are
-      // overwritten by the constraints).
-      if (c == nullptr)
-        x.reinit(product.trilinos_matrix());
-      else
-      {
-        Epetra_CrsMatrix *sum  = nullptr;
-        const int         ierr = EpetraExt::MatrixMatrix::Add(
-          product.trilinos_matrix(),
-          false,
-          1.,
-          c->trilinos_matrix(),
-          false,
-          -1.,
-          sum);
-        AssertThrow(ierr == 0 && sum != nullptr,
-                    ExcMessage("EpetraExt could not add the pressure block "
-                               "to B D^-1 B^T."));
-        sum->FillComplete(product.trilinos_matrix().DomainMap(),
-                          product.trilinos_matrix().RangeMap());
-        x.reinit(*sum);
-        delete sum;
-      }
+      // overwritten by the constraints). Without C, an explicit zero
+      // diagonal is added first: the product has no entry at all in an
+      // empty B row, and a row missing its diagonal cannot be given one
+      // later (X stayed singular there, and the inner CG on it ran to its
+      // iteration bound on every penalized pack).
+      const Epetra_CrsMatrix &p = product.trilinos_matrix();
+      Epetra_CrsMatrix        diagonal(Copy, p.RowMap(), 1);
+      for (int l = 0; l < p.RowMap().NumMyElements(); ++l)
+        {
+          int          row  = p.RowMap().GID(l);
+          const double zero = 0;
+          diagonal.InsertGlobalValues(row, 1, &zero, &row);
+        }
+      diagonal.FillComplete(p.DomainMap(), p.RangeMap());
+      const Epetra_CrsMatrix &second =
+        c == nullptr ? diagonal : c->trilinos_matrix();
+
+      Epetra_CrsMatrix *sum  = nullptr;
+      int               ierr = EpetraExt::MatrixMatrix::Add(
+        p, false, 1., second, false, -1., sum);
+      AssertThrow(ierr == 0 && sum != nullptr,
+                  ExcMessage("EpetraExt could not add the pressure block "
+                             "to B D^-1 B^T."));
+      sum->FillComplete(p.DomainMap(), p.RangeMap());
+      if (c != nullptr)
+        {
+          // C's pattern need not hold every diagonal either.
+          Epetra_CrsMatrix *with_diagonal = nullptr;
+          ierr = EpetraExt::MatrixMatrix::Add(
+            *sum, false, 1., diagonal, false, 1., with_diagonal);
+          AssertThrow(ierr == 0 && with_diagonal != nullptr,
+                      ExcMessage("EpetraExt could not add a diagonal to "
+                                 "B D^-1 B^T + C."));
+          with_diagonal->FillComplete(p.DomainMap(), p.RangeMap());
+          delete sum;
+          sum = with_diagonal;
+        }
+      x.reinit(*sum);
+      delete sum;
       make_pressure_diagonal_regular(x);
     }
 
@@ -129,14 +146,14 @@ namespace softsand
       const std::string                         &velocity_smoother,
       const SolverParameters::Schur              schur,
       const double                               inner_tolerance,
-      const bool                                 direct_velocity_solve)
+      const bool                                 direct_velocity_solve,
+      const SolverParameters::SchurInnerSolver   inner_solver)
       : system_matrix(system_matrix)
       , velocity_smoother(velocity_smoother)
       , schur(schur)
       , use_laplace(pressure_laplace_matrix != nullptr ||
                     schur == SolverParameters::Schur::discrete_brinkman ||
                     schur == SolverParameters::Schur::least_squares_commutator)
-      , inner_tolerance(inner_tolerance)
     {
       if (direct_velocity_solve)
         {
@@ -165,7 +182,9 @@ namespace softsand
               build_discrete_brinkman(system_matrix,
                                       discrete_brinkman,
                                       inverse_velocity_diagonal);
-              pressure_laplace_amg.initialize(discrete_brinkman, data);
+              discrete_brinkman_inverse.initialize(discrete_brinkman,
+                                                   inner_solver,
+                                                   inner_tolerance);
             }
           else
             pressure_laplace_amg.initialize(pressure_laplace_matrix->block(1, 1),
@@ -181,31 +200,12 @@ namespace softsand
 
 
     void
-    BlockSchurPreconditioner::solve_discrete_brinkman(
-      TrilinosWrappers::MPI::Vector       &dst,
-      const TrilinosWrappers::MPI::Vector &src) const
-    {
-      // Nearly closed pores make X nearly singular: an inner CG that stops
-      // at its bound still returns a usable (FGMRES) preconditioner.
-      ReductionControl control(200, 1e-300, inner_tolerance, false, false);
-      SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-      dst = 0;
-      try
-        {
-          cg.solve(discrete_brinkman, dst, src, pressure_laplace_amg);
-        }
-      catch (const SolverControl::NoConvergence &)
-        {}
-    }
-
-
-    void
     BlockSchurPreconditioner::vmult(BlockVector &dst, const BlockVector &src) const
     {
       if (schur == SolverParameters::Schur::least_squares_commutator)
         {
           // dst_p = -X^-1 (B D^-1 A D^-1 B^T) X^-1 src_p.
-          solve_discrete_brinkman(tmp_p, src.block(1));
+          discrete_brinkman_inverse.solve(tmp_p, src.block(1));
           system_matrix.block(0, 1).vmult(tmp_u, tmp_p);
           tmp_u.scale(inverse_velocity_diagonal);
           system_matrix.block(0, 0).vmult(tmp_u2, tmp_u);
@@ -219,7 +219,7 @@ namespace softsand
           // the small Hele-Shaw cell (doc/solver_study.md).
           system_matrix.block(1, 1).vmult(dst.block(1), tmp_p);
           tmp_p2 -= dst.block(1);
-          solve_discrete_brinkman(dst.block(1), tmp_p2);
+          discrete_brinkman_inverse.solve(dst.block(1), tmp_p2);
           dst.block(1) *= -1.;
         }
       else
@@ -229,7 +229,7 @@ namespace softsand
           if (use_laplace)
             {
               if (discrete_brinkman.m() > 0)
-                solve_discrete_brinkman(tmp_p, src.block(1));
+                discrete_brinkman_inverse.solve(tmp_p, src.block(1));
               else
                 pressure_laplace_amg.vmult(tmp_p, src.block(1));
               dst.block(1) += tmp_p;

@@ -207,6 +207,20 @@ namespace softsand
                         "simple-cubic array and converges at 1e-6 "
                         "(doc/solver_study.md).");
       prm.declare_entry(
+        "schur inner solver",
+        "direct",
+        Patterns::Selection("direct|amg cg"),
+        "schur complement = discrete brinkman or least squares commutator: "
+        "how X = B D^-1 B^T + C is inverted. direct = a sparse LU "
+        "factorization (MUMPS), made once per preconditioner and exact "
+        "whatever the penalty contrast and the pores sealed at the "
+        "resolution; its memory and time grow faster than the pressure "
+        "unknowns (a singular X, e.g. on a mesh too coarse for its walls, "
+        "falls back to amg cg with a warning). amg cg = CG with an AMG V-cycle to 'schur inner "
+        "tolerance', stopped at 200 iterations: memory linear in the "
+        "unknowns, but on penalized packs it reaches that bound "
+        "(doc/solver_study.md).");
+      prm.declare_entry(
         "reuse preconditioner",
         "true",
         Patterns::Bool(),
@@ -356,6 +370,9 @@ namespace softsand
               s == "weighted mass"     ? Schur::weighted_mass :
                                        Schur::mass;
       schur_inner_tolerance = prm.get_double("schur inner tolerance");
+      schur_inner_solver = prm.get("schur inner solver") == "direct" ?
+                             SchurInnerSolver::direct :
+                             SchurInnerSolver::amg_cg;
       reuse_preconditioner  = prm.get_bool("reuse preconditioner");
       preconditioner_rebuild_factor =
         prm.get_double("preconditioner rebuild factor");

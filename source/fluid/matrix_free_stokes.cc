@@ -54,7 +54,7 @@ namespace softsand
       TrilinosWrappers::PreconditionAMG                  pressure_laplace_amg;
       /// Least-squares commutator: X = B D^-1 B^T + C, its AMG, D^-1.
       TrilinosWrappers::SparseMatrix                     discrete_brinkman;
-      TrilinosWrappers::PreconditionAMG                  discrete_brinkman_amg;
+      DiscreteBrinkmanSolver                             discrete_brinkman_inverse;
       LinearAlgebra::distributed::Vector<double>         inverse_diagonal;
       /// Rigid-node pressure smoothing: the pressure block -C.
       TrilinosWrappers::SparseMatrix                     pressure_block;
@@ -94,21 +94,17 @@ namespace softsand
           const StokesOperator<dim>                   &stokes,
           const VelocityMultigrid<dim>                &multigrid,
           const VelocityOperator<dim, 2, double>      &velocity,
-          const TrilinosWrappers::SparseMatrix        &discrete_brinkman,
-          const TrilinosWrappers::PreconditionAMG     &discrete_brinkman_amg,
+          const DiscreteBrinkmanSolver                &discrete_brinkman,
           const VectorType                            &inverse_diagonal,
           const TrilinosWrappers::SparseMatrix        *pressure_block,
-          const std::vector<unsigned int>             &constrained_pressure,
-          const double                                 inner_tolerance)
+          const std::vector<unsigned int>             &constrained_pressure)
             : stokes(stokes)
             , multigrid(multigrid)
             , velocity(&velocity)
             , discrete_brinkman(&discrete_brinkman)
-            , discrete_brinkman_amg(&discrete_brinkman_amg)
             , inverse_diagonal(&inverse_diagonal)
             , pressure_block(pressure_block)
             , constrained_pressure(&constrained_pressure)
-            , inner_tolerance(inner_tolerance)
         {}
 
         void
@@ -139,22 +135,11 @@ namespace softsand
         const TrilinosWrappers::PreconditionILU *pressure_mass    = nullptr;
         const TrilinosWrappers::PreconditionAMG *pressure_laplace = nullptr;
         const VelocityOperator<dim, 2, double>  *velocity         = nullptr;
-        const TrilinosWrappers::SparseMatrix    *discrete_brinkman = nullptr;
-        const TrilinosWrappers::PreconditionAMG *discrete_brinkman_amg =
-          nullptr;
+        const DiscreteBrinkmanSolver            *discrete_brinkman = nullptr;
         const VectorType                        *inverse_diagonal     = nullptr;
         const TrilinosWrappers::SparseMatrix    *pressure_block       = nullptr;
         const std::vector<unsigned int>         *constrained_pressure = nullptr;
-        const double                             inner_tolerance      = 0;
         mutable VectorType                       tmp_u, tmp_u2, tmp_p, tmp_p2;
-
-      public:
-        /// Inner CG solves on X so far, and their iterations (the cost of
-        /// the commutator: two solves per application).
-        mutable unsigned int inner_solves     = 0;
-        mutable unsigned int inner_iterations = 0;
-
-      private:
 
         /// dst = -X^-1 (B D^-1 A D^-1 B^T + C) X^-1 src on coupled rows.
         void
@@ -164,7 +149,7 @@ namespace softsand
           tmp_p2.reinit(src, true);
           tmp_u.reinit(*inverse_diagonal, true);
           tmp_u2.reinit(*inverse_diagonal, true);
-          solve_discrete_brinkman(tmp_p, src);
+          discrete_brinkman->solve(tmp_p, src);
           stokes.apply_gradient(tmp_u, tmp_p);
           tmp_u.scale(*inverse_diagonal);
           velocity->vmult(tmp_u2, tmp_u);
@@ -177,29 +162,12 @@ namespace softsand
               pressure_block->vmult(dst, tmp_p);
               tmp_p2 -= dst;
             }
-          solve_discrete_brinkman(dst, tmp_p2);
+          discrete_brinkman->solve(dst, tmp_p2);
           dst *= -1.;
           for (const unsigned int i : *constrained_pressure)
             dst.local_element(i) = src.local_element(i);
         }
 
-        /// CG with AMG on X to the inner tolerance; an inexact solve that
-        /// stops at its bound still returns its last iterate (FGMRES).
-        void
-        solve_discrete_brinkman(VectorType &dst, const VectorType &src) const
-        {
-          ReductionControl   control(200, 1e-300, inner_tolerance, false, false);
-          SolverCG<VectorType> cg(control);
-          dst = 0;
-          try
-            {
-              cg.solve(*discrete_brinkman, dst, src, *discrete_brinkman_amg);
-            }
-          catch (const SolverControl::NoConvergence &)
-            {}
-          ++inner_solves;
-          inner_iterations += control.last_step();
-        }
       };
     } // namespace
 
@@ -367,6 +335,7 @@ namespace softsand
         // and B whose product gives X (released once X is formed).
         data.pressure_mass.clear();
         data.pressure_laplace.clear();
+        data.discrete_brinkman_inverse.clear();
         data.discrete_brinkman.clear();
         data.pressure_block.clear();
         // A Q1 pressure matrix with the pressure constraints' pattern.
@@ -803,8 +772,10 @@ namespace softsand
                                            smooth ? &data.pressure_block :
                                                     nullptr,
                                            data.discrete_brinkman);
-            data.discrete_brinkman_amg.initialize(data.discrete_brinkman,
-                                                  pressure_laplace_amg_data());
+            data.discrete_brinkman_inverse.initialize(
+              data.discrete_brinkman,
+              solver_parameters.schur_inner_solver,
+              solver_parameters.schur_inner_tolerance);
           }
         else
           data.pressure_mass_ilu.initialize(data.pressure_mass);
@@ -848,12 +819,10 @@ namespace softsand
             data.stokes,
             data.multigrid,
             *data.velocity_operator,
-            data.discrete_brinkman,
-            data.discrete_brinkman_amg,
+            data.discrete_brinkman_inverse,
             data.inverse_diagonal,
             smooth ? &data.pressure_block : nullptr,
-            constrained_pressure,
-            solver_parameters.schur_inner_tolerance) :
+            constrained_pressure) :
           MatrixFreeBlockPreconditioner<dim>(
             data.stokes,
             data.multigrid,
@@ -882,11 +851,15 @@ namespace softsand
       // the reactions and the grains' step, so that the peak memory is the
       // larger of the two phases rather than their sum.
       const unsigned int iterations = rhs_norm > 0 ? control.last_step() : 0;
-      if (preconditioner.inner_solves > 0)
-        pcout << "      commutator: " << preconditioner.inner_solves
-              << " inner CG solves on X, "
-              << preconditioner.inner_iterations / preconditioner.inner_solves
-              << " iterations each on average" << std::endl;
+      const DiscreteBrinkmanSolver &inner = data.discrete_brinkman_inverse;
+      if (inner.solves > 0)
+        pcout << "      commutator: " << inner.solves << " inner solves on X"
+              << (solver_parameters.schur_inner_solver ==
+                      SolverParameters::SchurInnerSolver::direct ?
+                    " (direct)" :
+                    ", CG iterations each on average: " +
+                      std::to_string(inner.iterations / inner.solves))
+              << ", " << inner.wall_time << " s" << std::endl;
       matrix_free_data.reset();
       rhs.reinit(0);
       lifting.reinit(0);

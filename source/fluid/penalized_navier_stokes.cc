@@ -1154,7 +1154,8 @@ namespace softsand
           "symmetric Gauss-Seidel",
         solver_parameters.schur,
         solver_parameters.schur_inner_tolerance,
-        solver_parameters.direct_velocity_solve);
+        solver_parameters.direct_velocity_solve,
+        solver_parameters.schur_inner_solver);
       preconditioner_convection = convection;
       preconditioner_iterations = 0;
     }

@@ -157,6 +157,10 @@ namespace softsand
           }
       open_volume   = Utilities::MPI::sum(open_volume, mesh.get_communicator());
       sealed_volume = Utilities::MPI::sum(sealed_volume, mesh.get_communicator());
+      // A closed container (no inlet, outlet or pressure face): nothing
+      // flows through any pore, so none is sealed off from the flow.
+      if (ends_present == 0)
+        sealed_volume = 0;
       open_path = !has_ends || Utilities::MPI::logical_or(path, mesh.get_communicator());
     }
 

@@ -8,6 +8,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 
+#include <softsand/fluid/discrete_brinkman_solver.h>
 #include <softsand/fluid/fluid_parameters.h>
 
 #include <memory>
@@ -51,7 +52,7 @@ namespace softsand
      * schur = discrete brinkman: L is instead the discrete
      * X = B D^-1 B^T + C with D = diag(A) (viscous + penalty + inertia; a
      * sparse triple product) and C the pressure block (rigid-node pressure
-     * smoothing), inverted by CG with AMG to a relative inner tolerance. In
+     * smoothing), inverted by DiscreteBrinkmanSolver (direct or CG + AMG). In
      * a dense pack the continuous L_(1/beta), weighted per quadrature
      * point, lets pressure "flow" through cut cells that the assembled A
      * closes: FGMRES needed 2,453 iterations on a 13-grain piece of the
@@ -85,7 +86,16 @@ namespace softsand
         const std::string           &velocity_smoother = "Chebyshev",
         const SolverParameters::Schur schur = SolverParameters::Schur::mass,
         const double                 inner_tolerance = 1e-6,
-        const bool                   direct_velocity_solve = false);
+        const bool                   direct_velocity_solve = false,
+        const SolverParameters::SchurInnerSolver inner_solver =
+          SolverParameters::SchurInnerSolver::direct);
+
+      /// Inner solves with X so far, and their CG iterations.
+      const DiscreteBrinkmanSolver &
+      discrete_brinkman_solver() const
+      {
+        return discrete_brinkman_inverse;
+      }
 
       void
       vmult(BlockVector &dst, const BlockVector &src) const;
@@ -108,14 +118,8 @@ namespace softsand
       TrilinosWrappers::SparseMatrix             discrete_brinkman;
       /// diag(A)^-1 (least squares commutator).
       TrilinosWrappers::MPI::Vector              inverse_velocity_diagonal;
-      const double                               inner_tolerance;
+      DiscreteBrinkmanSolver                     discrete_brinkman_inverse;
       mutable TrilinosWrappers::MPI::Vector      tmp_u, tmp_u2, tmp_p, tmp_p2;
-
-      /// CG with AMG on X to the inner tolerance (an inexact solve that
-      /// stops at its bound still returns its last iterate: FGMRES).
-      void
-      solve_discrete_brinkman(TrilinosWrappers::MPI::Vector       &dst,
-                              const TrilinosWrappers::MPI::Vector &src) const;
     };
   } // namespace fluid
 } // namespace softsand

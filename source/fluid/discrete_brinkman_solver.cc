@@ -1,0 +1,198 @@
+#include <softsand/base/warnings.h>
+#include <softsand/fluid/block_schur_preconditioner.h>
+#include <softsand/fluid/discrete_brinkman_solver.h>
+
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
+
+#include <deal.II/base/timer.h>
+
+#include <Amesos_Mumps.h>
+#include <Epetra_LinearProblem.h>
+#include <Epetra_Vector.h>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    DiscreteBrinkmanSolver::DiscreteBrinkmanSolver() = default;
+    DiscreteBrinkmanSolver::~DiscreteBrinkmanSolver() = default;
+
+
+    void
+    DiscreteBrinkmanSolver::clear()
+    {
+      factorization.reset();
+      problem.reset();
+      amg.clear();
+      matrix = nullptr;
+    }
+
+
+    unsigned int
+    DiscreteBrinkmanSolver::pin_pressure_level(TrilinosWrappers::SparseMatrix &x)
+    {
+      // Coupled rows: those with an off-diagonal entry. The others are the
+      // constrained pressures, given a lone diagonal entry.
+      const auto    range = x.local_range();
+      const MPI_Comm comm = x.get_mpi_communicator();
+      TrilinosWrappers::MPI::Vector coupled(x.locally_owned_range_indices(),
+                                            comm);
+      TrilinosWrappers::MPI::Vector row_sums(coupled);
+      types::global_dof_index first = numbers::invalid_dof_index;
+      for (auto i = range.first; i < range.second; ++i)
+        for (auto entry = x.begin(i); entry != x.end(i); ++entry)
+          if (entry->column() != i && entry->value() != 0)
+            {
+              coupled(i) = 1;
+              first      = std::min(first, i);
+              break;
+            }
+      coupled.compress(VectorOperation::insert);
+      x.vmult(row_sums, coupled);
+      double largest_ratio = 0;
+      for (auto i = range.first; i < range.second; ++i)
+        if (coupled(i) != 0)
+          largest_ratio = std::max(largest_ratio,
+                                   std::abs(row_sums(i)) / x.diag_element(i));
+      largest_ratio = dealii::Utilities::MPI::max(largest_ratio, comm);
+      first         = dealii::Utilities::MPI::min(first, comm);
+      // Rounding leaves about 1e-14 of the diagonal in a zero row sum; a
+      // pressure face leaves O(1) on the rows next to it.
+      const bool free_level =
+        first != numbers::invalid_dof_index && largest_ratio < 1e-8;
+      if (free_level && first >= range.first && first < range.second)
+        x.set(first, first, 2 * x.diag_element(first));
+      x.compress(VectorOperation::insert);
+      return free_level ? 1 : 0;
+    }
+
+
+    void
+    DiscreteBrinkmanSolver::initialize(TrilinosWrappers::SparseMatrix &x,
+                                       const Method method,
+                                       const double inner_tolerance)
+    {
+      clear();
+      matrix          = &x;
+      this->method    = method;
+      this->tolerance = inner_tolerance;
+      solves = iterations = 0;
+      wall_time = factorization_time = 0;
+      factor_entries = factor_megabytes = 0;
+      if (method == Method::amg_cg)
+        {
+          amg.initialize(x, pressure_laplace_amg_data());
+          return;
+        }
+      pin_pressure_level(x);
+      problem = std::make_unique<Epetra_LinearProblem>();
+      // Amesos takes a non-const operator; it does not change it.
+      problem->SetOperator(
+        const_cast<Epetra_CrsMatrix *>(&x.trilinos_matrix()));
+      // Debian's MUMPS orders with PORD (it has neither METIS nor SCOTCH);
+      // X is symmetric, but Amesos passes both triangles: general LU.
+      auto  mumps = std::make_unique<Amesos_Mumps>(*problem);
+      Timer timer;
+      if (mumps->SymbolicFactorization() != 0 ||
+          mumps->NumericFactorization() != 0)
+        {
+          // A singular X that the pin does not cure: a mesh so coarse that
+          // B has fewer free velocities than pressures (spurious pressure
+          // modes). CG copes with a consistent singular system.
+          base::warn_once("direct X fallback",
+                    "MUMPS could not factorize the pressure matrix X = B D^-1 "
+                    "B^T + C (INFOG(1) = " +
+                      std::to_string(mumps->GetINFOG()[0]) +
+                      ", -10: singular; the mesh may be too coarse for "
+                      "its walls); 'fluid solver/schur inner solver = "
+                      "direct' falls back to amg cg for this matrix.",
+                    x.get_mpi_communicator());
+          mumps.reset(); // before the problem it refers to
+          problem.reset();
+          this->method = Method::amg_cg;
+          amg.initialize(x, pressure_laplace_amg_data());
+          return;
+        }
+      factorization_time = timer.wall_time();
+      // INFOG(29): entries of the factors; INFOG(22): MB, all ranks.
+      factor_entries = mumps->GetINFOG()[28];
+      factor_megabytes = mumps->GetINFOG()[21];
+      factorization = std::move(mumps);
+    }
+
+
+    void
+    DiscreteBrinkmanSolver::solve_direct(double *dst, const double *src) const
+    {
+      const Epetra_Map &map = matrix->trilinos_matrix().DomainMap();
+      Epetra_Vector     x(View, map, dst);
+      Epetra_Vector     b(View, map, const_cast<double *>(src));
+      problem->SetLHS(&x);
+      problem->SetRHS(&b);
+      Timer timer;
+      AssertThrow(factorization->Solve() == 0,
+                  ExcMessage("MUMPS failed in a solve with X."));
+      wall_time += timer.wall_time();
+      ++solves;
+    }
+
+
+    namespace
+    {
+      template <typename VectorType>
+      unsigned int
+      amg_cg(const TrilinosWrappers::SparseMatrix    &x,
+             const TrilinosWrappers::PreconditionAMG &amg,
+             const double                             tolerance,
+             VectorType                              &dst,
+             const VectorType                        &src)
+      {
+        ReductionControl     control(200, 1e-300, tolerance, false, false);
+        SolverCG<VectorType> cg(control);
+        dst = 0;
+        try
+          {
+            cg.solve(x, dst, src, amg);
+          }
+        catch (const SolverControl::NoConvergence &)
+          {}
+        return control.last_step();
+      }
+    } // namespace
+
+
+    void
+    DiscreteBrinkmanSolver::solve(TrilinosWrappers::MPI::Vector       &dst,
+                                  const TrilinosWrappers::MPI::Vector &src) const
+    {
+      if (method == Method::direct)
+        solve_direct(&dst.trilinos_vector()[0][0],
+                     &src.trilinos_vector()[0][0]);
+      else
+        {
+          Timer timer;
+          iterations += amg_cg(*matrix, amg, tolerance, dst, src);
+          wall_time += timer.wall_time();
+          ++solves;
+        }
+    }
+
+
+    void
+    DiscreteBrinkmanSolver::solve(
+      LinearAlgebra::distributed::Vector<double>       &dst,
+      const LinearAlgebra::distributed::Vector<double> &src) const
+    {
+      if (method == Method::direct)
+        solve_direct(dst.begin(), src.begin());
+      else
+        {
+          Timer timer;
+          iterations += amg_cg(*matrix, amg, tolerance, dst, src);
+          wall_time += timer.wall_time();
+          ++solves;
+        }
+    }
+  } // namespace fluid
+} // namespace softsand
