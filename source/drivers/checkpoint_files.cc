@@ -2,6 +2,8 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -46,6 +48,13 @@ namespace softsand
             }
         }
       MPI_Barrier(comm);
+      // Fault injection for the restart tests: every rank dies by SIGKILL
+      // (no clean-up, no flush) right after this checkpoint. Granular steps
+      // take about a microsecond: no kill sent from outside lands between
+      // two given checkpoints.
+      if (const char *kill_step = std::getenv("SOFTSAND_SIGKILL_AFTER_CHECKPOINT"))
+        if (step >= std::stoul(kill_step))
+          std::raise(SIGKILL);
     }
 
 

@@ -8,6 +8,9 @@
 #include <deal.II/base/timer.h>
 
 #include <Amesos_Mumps.h>
+
+#include <fstream>
+#include <string>
 #include <Epetra_LinearProblem.h>
 #include <Epetra_Vector.h>
 
@@ -27,6 +30,26 @@ namespace softsand
       amg.clear();
       matrix = nullptr;
     }
+
+
+    namespace
+    {
+      /// MemAvailable of /proc/meminfo in MB; 0 where it cannot be read.
+      double
+      available_memory_megabytes()
+      {
+        std::ifstream meminfo("/proc/meminfo");
+        std::string   key;
+        double        kilobytes = 0;
+        while (meminfo >> key >> kilobytes)
+          {
+            if (key == "MemAvailable:")
+              return kilobytes / 1024;
+            meminfo.ignore(256, '\n');
+          }
+        return 0;
+      }
+    } // namespace
 
 
     unsigned int
@@ -75,12 +98,12 @@ namespace softsand
     {
       clear();
       matrix          = &x;
-      this->method    = method;
+      this->method    = method == Method::automatic ? Method::direct : method;
       this->tolerance = inner_tolerance;
       solves = iterations = 0;
       wall_time = factorization_time = 0;
       factor_entries = factor_megabytes = 0;
-      if (method == Method::amg_cg)
+      if (this->method == Method::amg_cg)
         {
           amg.initialize(x, pressure_laplace_amg_data());
           return;
@@ -94,20 +117,43 @@ namespace softsand
       // X is symmetric, but Amesos passes both triangles: general LU.
       auto  mumps = std::make_unique<Amesos_Mumps>(*problem);
       Timer timer;
-      if (mumps->SymbolicFactorization() != 0 ||
-          mumps->NumericFactorization() != 0)
+      const MPI_Comm comm = x.get_mpi_communicator();
+      // After the analysis MUMPS knows the memory its factors will take
+      // (INFO(15), MB on this rank): one that does not fit is refused
+      // before it is made, not met by the kernel's OOM killer.
+      const bool analysed = mumps->SymbolicFactorization() == 0;
+      const double estimate_mb = analysed ? mumps->GetINFO()[14] : 0.;
+      // MemAvailable is the node's: shared by the ranks on it.
+      MPI_Comm node;
+      MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+      int ranks_on_node = 1;
+      MPI_Comm_size(node, &ranks_on_node);
+      MPI_Comm_free(&node);
+      const double available_mb = available_memory_megabytes() / ranks_on_node;
+      const bool fits = dealii::Utilities::MPI::logical_or(
+                          available_mb > 0 && estimate_mb > 0.5 * available_mb,
+                          comm) == false;
+      const bool factorized =
+        analysed && fits && mumps->NumericFactorization() == 0;
+      if (!factorized)
         {
           // A singular X that the pin does not cure: a mesh so coarse that
           // B has fewer free velocities than pressures (spurious pressure
           // modes). CG copes with a consistent singular system.
-          base::warn_once("direct X fallback",
-                    "MUMPS could not factorize the pressure matrix X = B D^-1 "
-                    "B^T + C (INFOG(1) = " +
+          const std::string why =
+            !fits ? "MUMPS estimates " + std::to_string(long(estimate_mb)) +
+                      " MB for the factors on a rank with " +
+                      std::to_string(long(available_mb)) +
+                      " MB available (its share of the node's)" :
+                    "MUMPS could not factorize it (INFOG(1) = " +
                       std::to_string(mumps->GetINFOG()[0]) +
-                      ", -10: singular; the mesh may be too coarse for "
-                      "its walls); 'fluid solver/schur inner solver = "
-                      "direct' falls back to amg cg for this matrix.",
-                    x.get_mpi_communicator());
+                      "; -10: singular, e.g. a mesh too coarse for its walls)";
+          base::warn_once("direct X fallback",
+                          "The pressure matrix X = B D^-1 B^T + C of the Schur "
+                          "approximation is not factorized: " + why +
+                            ". 'fluid solver/schur inner solver' falls back to "
+                            "amg cg for this matrix.",
+                          comm);
           mumps.reset(); // before the problem it refers to
           problem.reset();
           this->method = Method::amg_cg;

@@ -208,18 +208,24 @@ namespace softsand
                         "(doc/solver_study.md).");
       prm.declare_entry(
         "schur inner solver",
-        "direct",
-        Patterns::Selection("direct|amg cg"),
+        "auto",
+        Patterns::Selection("auto|direct|amg cg"),
         "schur complement = discrete brinkman or least squares commutator: "
         "how X = B D^-1 B^T + C is inverted. direct = a sparse LU "
         "factorization (MUMPS), made once per preconditioner and exact "
         "whatever the penalty contrast and the pores sealed at the "
         "resolution; its memory and time grow faster than the pressure "
-        "unknowns (a singular X, e.g. on a mesh too coarse for its walls, "
-        "falls back to amg cg with a warning). amg cg = CG with an AMG V-cycle to 'schur inner "
-        "tolerance', stopped at 200 iterations: memory linear in the "
-        "unknowns, but on penalized packs it reaches that bound "
-        "(doc/solver_study.md).");
+        "unknowns. It falls back to amg cg, with a warning, where X is "
+        "singular (a mesh too coarse for its walls) or MUMPS's estimate of "
+        "its memory exceeds half the memory available on a rank. amg cg = "
+        "CG with an AMG V-cycle to 'schur inner tolerance', stopped at 200 "
+        "iterations: memory linear in the unknowns, and a few iterations "
+        "where X is a plain pressure Laplacian (rigid nodes), but on "
+        "penalized packs the penalty's contrast in D makes it reach that "
+        "bound. auto = direct with fluid/solid model = penalization, amg cg "
+        "otherwise (doc/solver_study.md: Fig. 3 pack at N = 8, 5x faster "
+        "with direct; Hele-Shaw with rigid nodes at 4.4 M DoFs, the same "
+        "time and half the memory with amg cg).");
       prm.declare_entry(
         "reuse preconditioner",
         "true",
@@ -370,9 +376,10 @@ namespace softsand
               s == "weighted mass"     ? Schur::weighted_mass :
                                        Schur::mass;
       schur_inner_tolerance = prm.get_double("schur inner tolerance");
-      schur_inner_solver = prm.get("schur inner solver") == "direct" ?
-                             SchurInnerSolver::direct :
-                             SchurInnerSolver::amg_cg;
+      const std::string inner = prm.get("schur inner solver");
+      schur_inner_solver      = inner == "auto"   ? SchurInnerSolver::automatic :
+                                inner == "direct" ? SchurInnerSolver::direct :
+                                                    SchurInnerSolver::amg_cg;
       reuse_preconditioner  = prm.get_bool("reuse preconditioner");
       preconditioner_rebuild_factor =
         prm.get_double("preconditioner rebuild factor");

@@ -774,7 +774,7 @@ namespace softsand
                                            data.discrete_brinkman);
             data.discrete_brinkman_inverse.initialize(
               data.discrete_brinkman,
-              solver_parameters.schur_inner_solver,
+              schur_inner_solver(),
               solver_parameters.schur_inner_tolerance);
           }
         else
@@ -854,8 +854,7 @@ namespace softsand
       const DiscreteBrinkmanSolver &inner = data.discrete_brinkman_inverse;
       if (inner.solves > 0)
         pcout << "      commutator: " << inner.solves << " inner solves on X"
-              << (solver_parameters.schur_inner_solver ==
-                      SolverParameters::SchurInnerSolver::direct ?
+              << (inner.is_exact() ?
                     " (direct)" :
                     ", CG iterations each on average: " +
                       std::to_string(inner.iterations / inner.solves))

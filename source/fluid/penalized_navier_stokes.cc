@@ -1155,7 +1155,7 @@ namespace softsand
         solver_parameters.schur,
         solver_parameters.schur_inner_tolerance,
         solver_parameters.direct_velocity_solve,
-        solver_parameters.schur_inner_solver);
+        schur_inner_solver());
       preconditioner_convection = convection;
       preconditioner_iterations = 0;
     }

@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # Test 'restart_modes': restart in the two modes with a time loop besides
 # the coupled one (kill_and_restart). Each scene runs on 2 ranks with a
-# checkpoint interval and is cut after a checkpoint: the transient run by
-# SIGKILL, the granular one (whose steps are too fast to aim a kill at) by
-# 'max time steps' (rows and files written after the checkpoint are left
-# behind either way); it is restarted from that checkpoint on 1 rank and
-# run to its end. Every statistics row must equal an uninterrupted 1-rank run's,
+# checkpoint interval and is killed by SIGKILL (no clean stop) after a
+# checkpoint: the transient run from outside once the checkpoint is
+# complete, the granular one (whose steps take microseconds: no outside
+# kill lands between two given checkpoints) by itself right after it
+# (SOFTSAND_SIGKILL_AFTER_CHECKPOINT). Rows and files written after the
+# checkpoint are left behind. It is restarted from that checkpoint on 1
+# rank and run to its end. Every statistics row must equal an uninterrupted 1-rank run's,
 # the output series must continue without duplicates, and a checkpoint
 # written by one mode must not restart another.
 #  - granular: 18 grains in two layers falling on a floor (wall and
 #    grain-grain contacts with tangential history), 260 DEM steps,
-#    checkpoints every 50, stopped at step 130;
+#    checkpoints every 50, killed after the checkpoint of step 100;
 #  - transient: a fixed sphere in a channel, BDF2, 8 steps, checkpoints
 #    every 2, killed once the checkpoint of step 4 is complete.
 # Usage: restart_modes.sh SOURCE_DIR SOFTSAND WORKDIR
@@ -91,17 +93,21 @@ PRM
 
 for mode in granular transient; do
   case $mode in
-    granular)  stop=130 checkpoint=100 ;;
-    transient) stop=5 checkpoint=4 ;;
+    granular)  checkpoint=100 ;;
+    transient) checkpoint=4 ;;
   esac
   $mode $mode-whole false 1000000 > $mode-whole.prm
   "$softsand" $mode-whole.prm > $mode-whole.log 2>&1
   $mode $mode-cut true 1000000 > $mode-cut-resume.prm
   if [ $mode = granular ]; then
-    # DEM steps take microseconds: no kill from outside lands between two
-    # given checkpoints, so the run stops itself after its checkpoint.
-    $mode $mode-cut false $stop > $mode-cut.prm
-    mpirun -np 2 "$softsand" $mode-cut.prm > $mode-cut.log 2>&1
+    # DEM steps take microseconds: the run kills itself (SIGKILL) right
+    # after the checkpoint of step 100.
+    $mode $mode-cut false 1000000 > $mode-cut.prm
+    if SOFTSAND_SIGKILL_AFTER_CHECKPOINT=$checkpoint \
+       mpirun -x SOFTSAND_SIGKILL_AFTER_CHECKPOINT -np 2 "$softsand" \
+         $mode-cut.prm > $mode-cut.log 2>&1; then
+      echo "FAIL: $mode: the run was not killed"; exit 1
+    fi
     step=$(head -1 $mode-cut/checkpoint.info | cut -d' ' -f1)
     [ "$step" = "$checkpoint" ] ||
       { echo "FAIL: $mode: checkpoint of step $step, expected $checkpoint"; exit 1; }
@@ -120,8 +126,7 @@ for mode in granular transient; do
   "$softsand" $mode-cut-resume.prm > $mode-cut-resume.log 2>&1
   grep -q "resumed at step $step" $mode-cut-resume.log ||
     { echo "FAIL: $mode: no 'resumed at step $step'"; exit 1; }
-  how=$([ $mode = granular ] && echo stopped || echo "killed (SIGKILL)")
-  echo "$mode: $how after the checkpoint of step $step on 2 ranks, resumed on 1"
+  echo "$mode: killed (SIGKILL) after the checkpoint of step $step on 2 ranks, resumed on 1"
 done
 
 # A checkpoint of one mode does not restart another.

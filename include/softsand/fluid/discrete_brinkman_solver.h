@@ -65,6 +65,14 @@ namespace softsand
         return matrix == nullptr;
       }
 
+      /// Whether X is factorized (direct, not fallen back to amg cg): each
+      /// solve is then the same linear operator.
+      bool
+      is_exact() const
+      {
+        return method == Method::direct;
+      }
+
       void
       solve(TrilinosWrappers::MPI::Vector       &dst,
             const TrilinosWrappers::MPI::Vector &src) const;

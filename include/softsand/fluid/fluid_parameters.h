@@ -98,13 +98,15 @@ namespace softsand
       /// schur = discrete brinkman or least squares commutator: relative
       /// tolerance of the inner CG on B D^-1 B^T.
       double       schur_inner_tolerance    = 1e-6;
-      /// How those inner solves on X = B D^-1 B^T + C are made.
+      /// How those inner solves on X = B D^-1 B^T + C are made; automatic
+      /// is resolved by the solver (direct with penalization).
       enum class SchurInnerSolver
       {
+        automatic,
         direct,
         amg_cg
       };
-      SchurInnerSolver schur_inner_solver = SchurInnerSolver::direct;
+      SchurInnerSolver schur_inner_solver = SchurInnerSolver::automatic;
       /// Keep the preconditioner of the last solve while the mesh and the
       /// matrix sparsity are unchanged (coupling steps); a solve that would
       /// need more than 'rebuild factor' times the iterations of the solve

@@ -342,6 +342,21 @@ namespace softsand
                fluid_parameters.solid_model ==
                  FluidParameters::SolidModel::rigid_nodes;
       }
+      /// 'schur inner solver' with auto resolved: direct where the penalty
+      /// sits in D = diag(A) (its contrast defeats the AMG on X), amg cg
+      /// where X is a plain pressure Laplacian.
+      SolverParameters::SchurInnerSolver
+      schur_inner_solver() const
+      {
+        if (solver_parameters.schur_inner_solver !=
+            SolverParameters::SchurInnerSolver::automatic)
+          return solver_parameters.schur_inner_solver;
+        return solid_field != nullptr &&
+                   fluid_parameters.solid_model ==
+                     FluidParameters::SolidModel::penalization ?
+                 SolverParameters::SchurInnerSolver::direct :
+                 SolverParameters::SchurInnerSolver::amg_cg;
+      }
       /// Rigid nodes, matrix-based solves: smooth the pressure of cells
       /// whose velocity nodes are (nearly) all imposed (see
       /// FluidParameters) rather than pin it. The matrix-free path has the
