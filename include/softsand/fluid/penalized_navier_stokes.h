@@ -32,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <cstdint>
 #include <memory>
 
 namespace softsand
@@ -357,6 +358,11 @@ namespace softsand
                  SolverParameters::SchurInnerSolver::direct :
                  SolverParameters::SchurInnerSolver::amg_cg;
       }
+      /// The constrained velocity DoFs (grains' rigid nodes, walls,
+      /// hanging nodes) as one number, the same on every rank: a hash of
+      /// their indices.
+      std::uint64_t
+      constrained_velocity_fingerprint() const;
       /// Rigid nodes, matrix-based solves: smooth the pressure of cells
       /// whose velocity nodes are (nearly) all imposed (see
       /// FluidParameters) rather than pin it. The matrix-free path has the
@@ -507,6 +513,9 @@ namespace softsand
       std::unique_ptr<BlockSchurPreconditioner> preconditioner;
       bool                                      preconditioner_convection = false;
       unsigned int                              preconditioner_iterations = 0;
+      /// constrained_velocity_fingerprint() when it was built: rigid nodes
+      /// that moved change the matrix it approximates.
+      std::uint64_t                             preconditioner_constraints = 0;
       /// AMG sweeps of the velocity block in use: 'velocity amg sweeps',
       /// doubled (at most twice) for the rest of the run each time a solve
       /// with a new preconditioner fails (solve_linear()).
