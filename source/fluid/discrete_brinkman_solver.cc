@@ -52,7 +52,7 @@ namespace softsand
     } // namespace
 
 
-    unsigned int
+    void
     DiscreteBrinkmanSolver::pin_pressure_level(TrilinosWrappers::SparseMatrix &x)
     {
       // Coupled rows: those with an off-diagonal entry. The others are the
@@ -87,7 +87,6 @@ namespace softsand
       if (free_level && first >= range.first && first < range.second)
         x.set(first, first, 2 * x.diag_element(first));
       x.compress(VectorOperation::insert);
-      return free_level ? 1 : 0;
     }
 
 
@@ -101,8 +100,7 @@ namespace softsand
       this->method    = method == Method::automatic ? Method::direct : method;
       this->tolerance = inner_tolerance;
       solves = iterations = 0;
-      wall_time = factorization_time = 0;
-      factor_entries = factor_megabytes = 0;
+      wall_time = 0;
       if (this->method == Method::amg_cg)
         {
           amg.initialize(x, pressure_laplace_amg_data());
@@ -115,8 +113,7 @@ namespace softsand
         const_cast<Epetra_CrsMatrix *>(&x.trilinos_matrix()));
       // Debian's MUMPS orders with PORD (it has neither METIS nor SCOTCH);
       // X is symmetric, but Amesos passes both triangles: general LU.
-      auto  mumps = std::make_unique<Amesos_Mumps>(*problem);
-      Timer timer;
+      auto           mumps = std::make_unique<Amesos_Mumps>(*problem);
       const MPI_Comm comm = x.get_mpi_communicator();
       // After the analysis MUMPS knows the memory its factors will take
       // (INFO(15), MB on this rank): one that does not fit is refused
@@ -137,9 +134,10 @@ namespace softsand
         analysed && fits && mumps->NumericFactorization() == 0;
       if (!factorized)
         {
-          // A singular X that the pin does not cure: a mesh so coarse that
-          // B has fewer free velocities than pressures (spurious pressure
-          // modes). CG copes with a consistent singular system.
+          // Factors that would not fit, or a singular X that the pin does
+          // not cure (a mesh so coarse that B has fewer free velocities
+          // than pressures: spurious pressure modes). CG needs only linear
+          // memory and copes with a consistent singular system.
           const std::string why =
             !fits ? "MUMPS estimates " + std::to_string(long(estimate_mb)) +
                       " MB for the factors on a rank with " +
@@ -160,10 +158,6 @@ namespace softsand
           amg.initialize(x, pressure_laplace_amg_data());
           return;
         }
-      factorization_time = timer.wall_time();
-      // INFOG(29): entries of the factors; INFOG(22): MB, all ranks.
-      factor_entries = mumps->GetINFOG()[28];
-      factor_megabytes = mumps->GetINFOG()[21];
       factorization = std::move(mumps);
     }
 
@@ -184,28 +178,25 @@ namespace softsand
     }
 
 
-    namespace
+    template <typename VectorType>
+    void
+    DiscreteBrinkmanSolver::solve_by_amg_cg(VectorType       &dst,
+                                            const VectorType &src) const
     {
-      template <typename VectorType>
-      unsigned int
-      amg_cg(const TrilinosWrappers::SparseMatrix    &x,
-             const TrilinosWrappers::PreconditionAMG &amg,
-             const double                             tolerance,
-             VectorType                              &dst,
-             const VectorType                        &src)
-      {
-        ReductionControl     control(200, 1e-300, tolerance, false, false);
-        SolverCG<VectorType> cg(control);
-        dst = 0;
-        try
-          {
-            cg.solve(x, dst, src, amg);
-          }
-        catch (const SolverControl::NoConvergence &)
-          {}
-        return control.last_step();
-      }
-    } // namespace
+      Timer                timer;
+      ReductionControl     control(200, 1e-300, tolerance, false, false);
+      SolverCG<VectorType> cg(control);
+      dst = 0;
+      try
+        {
+          cg.solve(*matrix, dst, src, amg);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {}
+      iterations += control.last_step();
+      wall_time += timer.wall_time();
+      ++solves;
+    }
 
 
     void
@@ -216,12 +207,7 @@ namespace softsand
         solve_direct(&dst.trilinos_vector()[0][0],
                      &src.trilinos_vector()[0][0]);
       else
-        {
-          Timer timer;
-          iterations += amg_cg(*matrix, amg, tolerance, dst, src);
-          wall_time += timer.wall_time();
-          ++solves;
-        }
+        solve_by_amg_cg(dst, src);
     }
 
 
@@ -233,12 +219,7 @@ namespace softsand
       if (method == Method::direct)
         solve_direct(dst.begin(), src.begin());
       else
-        {
-          Timer timer;
-          iterations += amg_cg(*matrix, amg, tolerance, dst, src);
-          wall_time += timer.wall_time();
-          ++solves;
-        }
+        solve_by_amg_cg(dst, src);
     }
   } // namespace fluid
 } // namespace softsand

@@ -90,13 +90,6 @@ namespace softsand
         const SolverParameters::SchurInnerSolver inner_solver =
           SolverParameters::SchurInnerSolver::direct);
 
-      /// Inner solves with X so far, and their CG iterations.
-      const DiscreteBrinkmanSolver &
-      discrete_brinkman_solver() const
-      {
-        return discrete_brinkman_inverse;
-      }
-
       void
       vmult(BlockVector &dst, const BlockVector &src) const;
 

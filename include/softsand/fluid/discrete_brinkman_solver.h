@@ -85,10 +85,6 @@ namespace softsand
       /// wall time (s).
       mutable unsigned int solves = 0, iterations = 0;
       mutable double       wall_time = 0;
-      /// direct: factorization wall time (s), entries of the factors and
-      /// MUMPS's memory over all ranks (MB).
-      double factorization_time = 0;
-      long   factor_entries = 0, factor_megabytes = 0;
 
     private:
       const TrilinosWrappers::SparseMatrix   *matrix = nullptr;
@@ -98,17 +94,22 @@ namespace softsand
       std::unique_ptr<Epetra_LinearProblem>   problem;
       std::unique_ptr<Amesos_BaseSolver>      factorization;
 
-      /// The number of pressure levels X leaves free: 1 if X 1 = 0 on its
-      /// coupled rows (no pressure face fixes the level), else 0. Then one
-      /// coupled diagonal entry X_kk is doubled. For every consistent right
-      /// side (1^T r = 0) the pinned system's solution solves X y = r with
-      /// y_k = 0, and LU no longer meets a zero pivot.
-      static unsigned int
+      /// Where X 1 = 0 on its coupled rows (no pressure face fixes the
+      /// pressure level), one coupled diagonal entry X_kk is doubled. For
+      /// every consistent right side (1^T r = 0) the pinned system's
+      /// solution solves X y = r with y_k = 0, and LU no longer meets a
+      /// zero pivot.
+      static void
       pin_pressure_level(TrilinosWrappers::SparseMatrix &x);
 
       /// dst = X^-1 src on the locally owned entries (direct).
       void
       solve_direct(double *dst, const double *src) const;
+
+      /// dst = X^-1 src by CG + AMG (amg cg), counted.
+      template <typename VectorType>
+      void
+      solve_by_amg_cg(VectorType &dst, const VectorType &src) const;
     };
   } // namespace fluid
 } // namespace softsand
