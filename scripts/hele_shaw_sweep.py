@@ -28,6 +28,19 @@ written to <workdir>/sweep.txt. --summarize tabulates the runs already in
 <workdir>/summary.txt without running anything. Each run also saves its
 last grains in <workdir>/p<p_i>/pack_end.txt. Run from the repository
 root.
+
+Developed fractures (--developed): each injection runs until its fracture
+reaches --reach-fraction (0.8) of the scene's fracture-map outer radius,
+its area grows by less than one pixel over --stall-steps (10) coupling
+steps, or --end-time (default 0.2 s with --developed), whichever comes
+first (postprocessing/fracture area/stop at reach and stop when stalled
+over). Every run writes a checkpoint every --checkpoint-interval coupling
+steps (default 5 with --developed) and its screen output to
+<workdir>/p<p_i>.log. Running the same command again resumes: a finished
+pressure (<workdir>/p<p_i>/sweep_done.txt) is only tabulated, an
+unfinished one with a checkpoint restarts from it, the others start anew;
+the wall time is summed over the sessions. The table's 'end' column says
+why each run ended: reach, stalled, time (end time or max steps).
 """
 import argparse
 import concurrent.futures
@@ -56,9 +69,44 @@ def k_ratio(rows, prm_text):
     return rows[-1]['radial_permeability'] / rows[0]['radial_permeability']
 
 
+def outer_radius(text):
+    m = re.findall(r'^\s*set\s+outer radius\s*=\s*(\S+)', text, re.MULTILINE)
+    if not m or float(m[-1]) <= 0:
+        sys.exit('--developed needs postprocessing/fracture area/outer radius '
+                 '> 0 in the scene (the reach is a fraction of it)')
+    return float(m[-1])
+
+
+def end_reason(log_text):
+    """Why a finished run ended, from its screen output."""
+    if 'Developed fracture' in log_text:
+        return 'reach' if 'stop at reach' in log_text else 'stalled'
+    return 'time'
+
+
 def run_one(args, text, p):
     name = 'p%g' % p
+    outdir = os.path.join(args.workdir, name)
+    done_file = os.path.join(outdir, 'sweep_done.txt')
+    wall_file = os.path.join(outdir, 'sweep_wall.txt')
+    if os.path.exists(done_file):
+        r = summarize_one(args, p)
+        r['end'] = open(done_file).read().split()[0]
+        return r
     overrides = [('boundary conditions/inlet region/pressure', '%g' % p)]
+    if args.developed:
+        overrides += [
+            ('postprocessing/fracture area/stop at reach',
+             '%g' % (args.reach_fraction * outer_radius(text))),
+            ('postprocessing/fracture area/stop when stalled over',
+             '%d' % args.stall_steps)]
+    if args.checkpoint_interval:
+        overrides.append(('simulation control/checkpoint interval',
+                          '%d' % args.checkpoint_interval))
+    restart = (args.checkpoint_interval > 0 and
+               os.path.exists(os.path.join(outdir, 'checkpoint.info')))
+    overrides.append(('simulation control/restart',
+                      'true' if restart else 'false'))
     if args.cells_per_diameter is not None:
         overrides.append(('mesh/cells per diameter',
                           '%g' % args.cells_per_diameter))
@@ -82,7 +130,6 @@ def run_one(args, text, p):
     overrides.append(('dem/save pack', 'pack_end.txt'))
     for path, value in overrides:
         text = prm_tools.set_entry(text, path, value)
-    outdir = os.path.join(args.workdir, name)
     text = prm_tools.set_entry(text, 'output/directory', outdir)
     text = prm_tools.set_entry(text, 'output/output interval', '100000')
     text = prm_tools.set_entry(text, 'output/verbosity', 'quiet')
@@ -94,21 +141,28 @@ def run_one(args, text, p):
     if args.ranks > 1:
         cmd = ['mpirun', '-np', str(args.ranks)] + cmd
     start = time.time()
-    proc = subprocess.run(cmd, capture_output=True, text=True)
+    with open(os.path.join(args.workdir, name + '.log'), 'a') as log:
+        log.write('# %s%s\n' % (' '.join(cmd),
+                                 ' (restart)' if restart else ''))
+        log.flush()
+        proc = subprocess.run(cmd, stdout=log, stderr=subprocess.PIPE,
+                              text=True)
+        log.write(proc.stderr)
+    wall = time.time() - start
+    if os.path.exists(wall_file):
+        wall += float(open(wall_file).read())
+    os.makedirs(outdir, exist_ok=True)
+    with open(wall_file, 'w') as f:
+        f.write('%.1f\n' % wall)
     if proc.returncode != 0:
         return dict(p=p, error=' '.join(proc.stderr.strip().splitlines()[-1:]),
-                    wall=time.time() - start)
-    last = prm_tools.read_statistics(outdir)[-1]
-    rows = prm_tools.read_statistics(os.path.join(args.workdir, name))
-    return dict(p=p, steps=int(last['step']), time=last['time'],
-                area0=rows[0]['fracture_area'],
-                area=last['fracture_area'],
-                area_max=max(r['fracture_area'] for r in rows),
-                k_ratio=k_ratio(rows, text),
-                open_area=last['open_area'],
-                max_speed=last['max_speed'],
-                dofs=last['dofs'], cells=last['cells'],
-                wall=time.time() - start)
+                    wall=wall)
+    reason = end_reason(open(os.path.join(args.workdir, name + '.log')).read())
+    with open(done_file, 'w') as f:
+        f.write(reason + '\n')
+    r = summarize_one(args, p)
+    r.update(end=reason, wall=wall)
+    return r
 
 
 def summarize_one(args, p):
@@ -122,14 +176,21 @@ def summarize_one(args, p):
     if not rows:
         return dict(p=p, error='no statistics in ' + outdir, wall=0)
     last = rows[-1]
+    wall_file = os.path.join(outdir, 'sweep_wall.txt')
+    done_file = os.path.join(outdir, 'sweep_done.txt')
     return dict(p=p, steps=int(last['step']), time=last['time'],
                 area0=rows[0]['fracture_area'], area=last['fracture_area'],
                 area_max=max(r['fracture_area'] for r in rows),
+                reach=last.get('fracture_reach', float('nan')),
                 k_ratio=k_ratio(rows, open(os.path.join(
                     args.workdir, 'p%g.prm' % p)).read()),
                 open_area=last['open_area'], max_speed=last['max_speed'],
+                re_p=last.get('radial_pore_reynolds', float('nan')),
                 dofs=last['dofs'], cells=last['cells'],
-                wall=last['wall_time'])
+                end=(open(done_file).read().split()[0]
+                     if os.path.exists(done_file) else 'unfinished'),
+                wall=(float(open(wall_file).read())
+                      if os.path.exists(wall_file) else last['wall_time']))
 
 
 def main():
@@ -157,7 +218,22 @@ def main():
                         '<workdir> (unfinished runs: their last row)')
     a.add_argument('--open-area', type=float,
                    default=0.5 * math.pi / 4 * 1.35e-3 ** 2)
+    a.add_argument('--developed', action='store_true',
+                   help='run each injection to a developed fracture (see '
+                        'above); resumable')
+    a.add_argument('--reach-fraction', type=float, default=0.8)
+    a.add_argument('--stall-steps', type=int, default=10)
+    a.add_argument('--checkpoint-interval', type=int, default=None,
+                   help='coupling steps between checkpoints (default 5 with '
+                        '--developed, else 0: none)')
     args = a.parse_args()
+    if args.checkpoint_interval is None:
+        args.checkpoint_interval = 5 if args.developed else 0
+    if args.developed and args.end_time is None:
+        args.end_time = 0.2
+    if not 0 < args.reach_fraction < 1:
+        sys.exit('--reach-fraction must lie in (0, 1), got %g'
+                 % args.reach_fraction)
     os.environ.setdefault('OMP_NUM_THREADS', '1')
     os.environ.setdefault('DEAL_II_NUM_THREADS', '1')
     with open(args.scene) as f:
@@ -173,7 +249,8 @@ def main():
              (args.scene, args.cells_per_diameter, args.cohesion),
              '# p_i[Pa] steps t_end[s] area_start[mm^2] area_end[mm^2] '
              'area_max[mm^2] growth_max[mm^2] open_area[mm^2] K_end/K_start '
-             'max_speed[m/s] fractured dofs wall[s]']
+             'max_speed[m/s] fractured dofs wall[s] reach_end[mm] '
+             'Re_p_end end']
     below, above = None, None
     for r in sorted(results, key=lambda r: r['p']):
         if 'error' in r:
@@ -192,7 +269,9 @@ def main():
                         r['open_area'] * 1e6,
                         '-' if math.isnan(r['k_ratio']) else
                         '%.3f' % r['k_ratio'], r['max_speed'],
-            'yes' if fractured else 'no', r['dofs'], r['wall']))
+            'yes' if fractured else 'no', r['dofs'], r['wall'])
+                     + ' %.2f %.3g %s' % (r['reach'] * 1e3, r['re_p'],
+                                          r.get('end', 'unfinished')))
     if any('k_ratio' in r and math.isnan(r['k_ratio']) for r in results):
         lines.append("# K_end/K_start '-': the transient model's flow starts "
                      "from rest, its first step's K is not the pack's")

@@ -52,6 +52,19 @@ main(int argc, char *argv[])
                                ParameterHandler::OutputStyle::PRM);
           return 0;
         }
+      if (argc > 2)
+        {
+          // Options after the file would otherwise be dropped without a
+          // word: the run would not be the one asked for.
+          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            std::cerr << "softsand: error: unexpected argument '" << argv[2]
+                      << "' after the parameter file " << argv[1]
+                      << ": softsand takes one parameter file (change "
+                         "entries in the file itself)."
+                      << std::endl;
+          print_usage();
+          return 1;
+        }
       try
         {
           softsand::drivers::run_parameter_file(argv[1], MPI_COMM_WORLD);

@@ -14,12 +14,21 @@
 //    remaining ones touch their edges, which lie on pixel edges (0.125 mm
 //    pixels), and the inlet circle crosses the channel's two pixel rows
 //    between pixel centres at x = 1 mm. Exact answers: fracture area
-//    0.25 mm x (3 - 1) mm = 0.5 mm^2; open area 0.5 + 0.5625 mm^2.
+//    0.25 mm x (3 - 1) mm = 0.5 mm^2; open area 0.5 + 0.5625 mm^2. The
+//    reach is the centre of the channel's last pixels, (23.5, +-0.5) pixels
+//    from the axis.
+// 3. Developed fracture (postprocess::FractureDevelopment) on that layout:
+//    the reach stop holds at 2.9 mm and not at 3.0 mm; the stall stop over
+//    2 steps holds at the third check of an unchanged map and not before,
+//    and not when the channel is lengthened by 2 pixels between the second
+//    and third checks (the area grows by 4 pixels).
 
 #include <softsand/postprocess/fracture_area.h>
+#include <softsand/postprocess/fracture_development.h>
 
 #include "tests.h"
 
+#include <algorithm>
 #include <cmath>
 
 using namespace softsand;
@@ -132,5 +141,60 @@ main(int argc, char **argv)
                   "yes" :
                   "NO")
             << std::endl;
+    const double exact_reach = s * std::sqrt(23.5 * 23.5 + 0.25);
+    deallog << "reach " << std::setprecision(5) << map.reach() * 1e3
+            << " mm (exact " << exact_reach * 1e3 << "): "
+            << (std::abs(map.reach() - exact_reach) < 1e-12 ? "yes" : "NO")
+            << std::setprecision(6) << std::endl;
+
+    // 3. Developed fracture.
+    fluid::PressureRegion<3> inlet;
+    inlet.is_enabled = true;
+    inlet.radius     = inlet_radius;
+    inlet.axis[2]    = 1;
+    const Point<3> lower(-40 * s, -40 * s, 0), upper(40 * s, 40 * s, h);
+    const auto     says = [](const std::string &why) {
+      return why.empty() ? std::string("no") : "yes (" + why + ")";
+    };
+    for (const double stop : {2.9e-3, 3.0e-3})
+      {
+        p.stop_reach = stop;
+        postprocess::FractureDevelopment development(
+          p, inlet, lower, upper, MPI_COMM_WORLD);
+        deallog << "stop at reach " << stop * 1e3
+                << " mm: " << says(development.check(grains)) << std::endl;
+      }
+    p.stop_reach       = 0;
+    p.stop_stall_steps = 2;
+    {
+      postprocess::FractureDevelopment development(
+        p, inlet, lower, upper, MPI_COMM_WORLD);
+      for (unsigned int k = 1; k <= 3; ++k)
+        deallog << "unchanged map, check " << k << ", stalled: "
+                << says(development.check(grains)) << std::endl;
+    }
+    {
+      postprocess::FractureDevelopment development(
+        p, inlet, lower, upper, MPI_COMM_WORLD);
+      // The channel lengthened by 2 pixels at the third check: the grains
+      // reaching into [24 s, 26 s] x [-s, s] go, which opens 4 pixels.
+      std::vector<dem::Grain<3>> growing = grains;
+      const double extension[4] = {24 * s, 26 * s, -s, s};
+      for (unsigned int k = 1; k <= 3; ++k)
+        {
+          if (k == 3)
+            growing.erase(std::remove_if(growing.begin(),
+                                         growing.end(),
+                                         [&](const dem::Grain<3> &g) {
+                                           return distance_to(extension,
+                                                              g.center[0],
+                                                              g.center[1]) <
+                                                  r - 1e-12 * s;
+                                         }),
+                          growing.end());
+          deallog << "growing map, check " << k << ", stalled: "
+                  << says(development.check(growing)) << std::endl;
+        }
+    }
   }
 }

@@ -56,13 +56,15 @@ namespace softsand
       set_up();
       const auto &sc = parameters.simulation_control;
       Timer       loop_clock;
-      while (!sc.reached_end(time, step))
+      while (!sc.reached_end(time, step) && developed_fracture.empty())
         {
           ++step;
           const double dt = choose_time_step();
           follow_grains();
+          judge_fracture_development();
           solve_fluid(dt);
-          const bool last  = sc.reached_end(time + dt, step);
+          const bool last =
+            sc.reached_end(time + dt, step) || !developed_fracture.empty();
           const bool write = parameters.output.output_due(step, last);
           record_fluid(time + dt, write);
           hand_forces_to_grains(dt);
@@ -170,6 +172,15 @@ namespace softsand
                      g.diameter() * g.diameter() / (18 * p.fluid.viscosity));
       warn_about_fluid_model(p, !fluid.grains().empty(), mpi_communicator);
       warn_about_response_time();
+      if (p.fracture_area.enabled &&
+          (p.fracture_area.stop_reach > 0 || p.fracture_area.stop_stall_steps > 0))
+        fracture_development =
+          std::make_unique<postprocess::FractureDevelopment>(
+            p.fracture_area,
+            p.boundary_conditions.inlet_region(),
+            p.mesh.lower_corner,
+            p.mesh.upper_corner,
+            mpi_communicator);
     }
 
 
@@ -226,6 +237,19 @@ namespace softsand
           fluid.adapt_to_grains(true);
           ++n_mesh_adaptations;
         }
+    }
+
+
+    void
+    CoupledScene::judge_fracture_development()
+    {
+      if (!fracture_development)
+        return;
+      developed_fracture = fracture_development->check(fluid.grains());
+      if (!developed_fracture.empty())
+        console.pcout << "Developed fracture at step " << step << ", t = "
+                      << time << " s: " << developed_fracture
+                      << "; the run ends after this step." << std::endl;
     }
 
 
@@ -357,6 +381,8 @@ namespace softsand
         save_pack(*dem, p.output.directory, p.dem.save_pack, mpi_communicator);
       last_results["coupled_steps"]    = step;
       last_results["mesh_adaptations"] = n_mesh_adaptations;
+      if (fracture_development)
+        last_results["fracture_developed"] = developed_fracture.empty() ? 0 : 1;
       // The first grain's state under the names of its statistics columns.
       if (!fluid.grains().empty())
         for (unsigned int d = 0; d < 3; ++d)

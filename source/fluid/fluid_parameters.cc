@@ -252,14 +252,19 @@ namespace softsand
                         "the run, with a warning.");
       prm.declare_entry(
         "velocity amg smoother",
-        "chebyshev",
-        Patterns::Selection("chebyshev|symmetric gauss seidel"),
+        "auto",
+        Patterns::Selection("auto|chebyshev|symmetric gauss seidel|ilu"),
         "Smoother of the velocity-block AMG (ML). chebyshev assumes a "
-        "symmetric positive definite block (Stokes, time steps with "
-        "rho/dt dominating); symmetric gauss seidel also smooths the "
-        "nonsymmetric convection (Newton/Picard) block of steady flow at "
-        "cell Reynolds numbers above about 1 (doc/validation.md: drag at "
-        "Re = 50 and 100).");
+        "symmetric positive definite block (Stokes); ilu (incomplete LU "
+        "per rank) also smooths the nonsymmetric convection block of "
+        "transient and Picard/Newton steps: on the small Hele-Shaw "
+        "injection at 16 kPa (transient, cell Reynolds numbers near 100) "
+        "it took 3-19 FGMRES iterations per step where chebyshev took "
+        "65-212 and symmetric gauss seidel 483 (doc/solver_study.md, "
+        "\"The velocity smoother of convective steps\"); symmetric gauss "
+        "seidel is kept for the steady drag studies at Re = 50 and 100 "
+        "(doc/validation.md). auto: ilu where the block carries "
+        "convection, chebyshev for Stokes.");
       prm.declare_entry(
         "velocity block solver",
         "amg",
@@ -384,9 +389,14 @@ namespace softsand
       preconditioner_rebuild_factor =
         prm.get_double("preconditioner rebuild factor");
       velocity_amg_sweeps = prm.get_integer("velocity amg sweeps");
-      velocity_amg_smoother = prm.get("velocity amg smoother") == "chebyshev" ?
-                                AmgSmoother::chebyshev :
-                                AmgSmoother::symmetric_gauss_seidel;
+      {
+        const std::string smoother = prm.get("velocity amg smoother");
+        velocity_amg_smoother =
+          smoother == "auto"      ? AmgSmoother::automatic :
+          smoother == "chebyshev" ? AmgSmoother::chebyshev :
+          smoother == "ilu"       ? AmgSmoother::ilu :
+                                    AmgSmoother::symmetric_gauss_seidel;
+      }
       direct_velocity_solve = prm.get("velocity block solver") == "direct";
       grad_div              = prm.get_double("grad div");
       grad_div_cell_factor     = prm.get_double("grad div cell factor");

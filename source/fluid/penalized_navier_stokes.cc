@@ -1131,6 +1131,30 @@ namespace softsand
     }
 
 
+    namespace
+    {
+      /// The ML smoother of the velocity block. Chebyshev's polynomial
+      /// needs a real spectrum; a convective block's is not.
+      const char *
+      velocity_smoother_name(const SolverParameters::AmgSmoother smoother,
+                             const bool                          convection)
+      {
+        using S = SolverParameters::AmgSmoother;
+        switch (smoother)
+          {
+            case S::chebyshev:
+              return "Chebyshev";
+            case S::symmetric_gauss_seidel:
+              return "symmetric Gauss-Seidel";
+            case S::ilu:
+              return "ILU";
+            default:
+              return convection ? "ILU" : "Chebyshev";
+          }
+      }
+    } // namespace
+
+
     template <int dim>
     void
     PenalizedNavierStokes<dim>::build_preconditioner(const bool convection)
@@ -1161,10 +1185,8 @@ namespace softsand
           nullptr,
         constant_modes,
         velocity_amg_sweeps_in_use(),
-        solver_parameters.velocity_amg_smoother ==
-            SolverParameters::AmgSmoother::chebyshev ?
-          "Chebyshev" :
-          "symmetric Gauss-Seidel",
+        velocity_smoother_name(solver_parameters.velocity_amg_smoother,
+                               convection),
         solver_parameters.schur,
         solver_parameters.schur_inner_tolerance,
         solver_parameters.direct_velocity_solve,

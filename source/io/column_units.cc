@@ -20,7 +20,7 @@ namespace softsand
                     "radial_superficial_velocity|grain\\d+_v[xyz]"),
          "m/s"},
         {std::regex("grain\\d+_w[xyz]"), "rad/s"},
-        {std::regex("grain\\d+_[xyz]|.*_position"), "m"},
+        {std::regex("grain\\d+_[xyz]|.*_position|fracture_reach"), "m"},
         {std::regex("pressure_drop|.*_pressure|ring_pressure_\\d+"), "Pa"},
         {std::regex(".*force.*|boundary_reaction_[xyz]"), "N"},
         {std::regex("flow_rate|outflow_rate|radial_flow_rate"), "m^3/s"},

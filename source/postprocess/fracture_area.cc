@@ -47,6 +47,21 @@ namespace softsand
                         "Pixels farther than this from the inlet axis are "
                         "never open (m; 0: the whole box): the grain-free "
                         "fluid outside the pack's walls is no fracture.");
+      prm.declare_entry("stop at reach",
+                        "0",
+                        Patterns::Double(0),
+                        "Coupled runs: end the run (a developed fracture) "
+                        "once the fracture reaches this distance from the "
+                        "inlet axis (m; statistics column fracture_reach; "
+                        "0: never). Must lie between the inlet radius and "
+                        "the outer radius.");
+      prm.declare_entry("stop when stalled over",
+                        "0",
+                        Patterns::Integer(0),
+                        "Coupled runs: end the run (a developed fracture) "
+                        "once the fracture area grew by less than one pixel "
+                        "over this many coupling steps (0: never). After a "
+                        "restart the count starts anew.");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -62,6 +77,22 @@ namespace softsand
       open_threshold = prm.get_double("open threshold");
       samples        = prm.get_integer("samples");
       outer_radius   = prm.get_double("outer radius");
+      stop_reach       = prm.get_double("stop at reach");
+      stop_stall_steps = prm.get_integer("stop when stalled over");
+      if (!enabled && (stop_reach > 0 || stop_stall_steps > 0))
+        base::throw_invalid_parameter(
+          "postprocessing/fracture area/" +
+            std::string(stop_reach > 0 ? "stop at reach" :
+                                         "stop when stalled over"),
+          prm.get(stop_reach > 0 ? "stop at reach" : "stop when stalled over"),
+          "0 unless 'postprocessing/fracture area/enabled = true' (the "
+          "stop is judged on the fracture map)");
+      if (stop_reach > 0 && outer_radius > 0 && stop_reach >= outer_radius)
+        base::throw_invalid_parameter(
+          "postprocessing/fracture area/stop at reach",
+          prm.get("stop at reach"),
+          "below 'outer radius' = " + prm.get("outer radius") +
+            " m (no fracture pixel lies beyond it)");
       if (enabled && !(open_threshold > 0 && open_threshold < 1))
         base::throw_invalid_parameter(
           "postprocessing/fracture area/open threshold",
@@ -171,6 +202,10 @@ namespace softsand
               {
                 state[n] = connected;
                 area += pixel_area;
+                const double dx = origin[0] + (n % nx + 0.5) * pixel - inlet_center[0];
+                const double dy = origin[1] + (n / nx + 0.5) * pixel - inlet_center[1];
+                largest_distance =
+                  std::max(largest_distance, std::sqrt(dx * dx + dy * dy));
                 front.push_back(n);
               }
           };

@@ -12,6 +12,7 @@
 #include <softsand/io/grain_output.h>
 #include <softsand/io/statistics_file.h>
 #include <softsand/postprocess/columns/grain_columns.h>
+#include <softsand/postprocess/fracture_development.h>
 
 #include <map>
 #include <memory>
@@ -56,6 +57,10 @@ namespace softsand
       /// Re-adapt the fluid mesh once a grain moved a fraction of a cell.
       void
       follow_grains();
+      /// Whether the injection's fracture has developed (the stops of
+      /// postprocessing/fracture area): then this step is the last.
+      void
+      judge_fracture_development();
       void
       solve_fluid(const double dt);
       void
@@ -105,6 +110,9 @@ namespace softsand
       std::unique_ptr<io::StatisticsFile> statistics;
       std::unique_ptr<io::GrainOutput>    grain_output;
       std::map<std::string, double>       last_results;
+      std::unique_ptr<postprocess::FractureDevelopment> fracture_development;
+      /// Why the fracture counts as developed (empty: not yet).
+      std::string developed_fracture;
 
       unsigned int step               = 0;
       double       time               = 0;

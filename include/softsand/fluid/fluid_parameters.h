@@ -117,10 +117,13 @@ namespace softsand
       /// Smoother of the velocity-block AMG (an ML smoother type).
       enum class AmgSmoother
       {
+        /// ilu for a block with convection, chebyshev without.
+        automatic,
         chebyshev,
-        symmetric_gauss_seidel
+        symmetric_gauss_seidel,
+        ilu
       };
-      AmgSmoother velocity_amg_smoother = AmgSmoother::chebyshev;
+      AmgSmoother velocity_amg_smoother = AmgSmoother::automatic;
       /// Matrix based: a sparse direct solve of the velocity block in the
       /// preconditioner instead of the AMG V-cycle.
       bool direct_velocity_solve = false;

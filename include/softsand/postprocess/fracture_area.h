@@ -33,6 +33,12 @@ namespace softsand
       /// Pixels farther than this from the inlet axis are closed (m; 0: the
       /// whole box): the open fluid outside the pack's walls is no fracture.
       double outer_radius = 0;
+      /// Coupled runs end once the fracture reaches this distance from the
+      /// inlet axis (m; 0: never).
+      double stop_reach = 0;
+      /// Coupled runs end once the fracture area grew by less than one
+      /// pixel over this many coupling steps (0: never).
+      unsigned int stop_stall_steps = 0;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -77,6 +83,21 @@ namespace softsand
       fracture_area() const
       {
         return area;
+      }
+
+      /// Largest distance from the inlet axis of a fracture pixel's centre
+      /// (m; 0 when no open pixel touches the inlet).
+      double
+      reach() const
+      {
+        return largest_distance;
+      }
+
+      /// Area of one pixel (m^2).
+      double
+      pixel_area() const
+      {
+        return pixel * pixel;
       }
 
       /// Area of all open pixels within the outer radius, inlet excluded
@@ -132,7 +153,7 @@ namespace softsand
       Point<2>           origin;
       std::vector<float> solid;
       std::vector<State> state;
-      double             area = 0, all_open_area = 0;
+      double             area = 0, all_open_area = 0, largest_distance = 0;
     };
   } // namespace postprocess
 } // namespace softsand

@@ -28,7 +28,7 @@ namespace softsand
                                      Columns                &row) const
     {
       // Computed on rank 0 from the grains (every rank holds them).
-      double areas[2] = {0, 0};
+      double areas[3] = {0, 0, 0};
       if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         {
           const auto          &lo = lower_corner;
@@ -43,6 +43,7 @@ namespace softsand
                                 parameters);
           areas[0] = map.fracture_area();
           areas[1] = map.open_area();
+          areas[2] = map.reach();
           if (s.write_fields && !map_directory.empty())
             {
               std::ostringstream name;
@@ -51,9 +52,10 @@ namespace softsand
               map.write_pgm(name.str());
             }
         }
-      MPI_Bcast(areas, 2, MPI_DOUBLE, 0, mpi_communicator);
+      MPI_Bcast(areas, 3, MPI_DOUBLE, 0, mpi_communicator);
       row["fracture_area"] = areas[0];
       row["open_area"]     = areas[1];
+      row["fracture_reach"] = areas[2];
     }
   } // namespace postprocess
 } // namespace softsand
