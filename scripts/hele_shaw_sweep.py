@@ -36,10 +36,12 @@ steps, or --end-time (default 0.2 s with --developed), whichever comes
 first (postprocessing/fracture area/stop at reach and stop when stalled
 over). Every run writes a checkpoint every --checkpoint-interval coupling
 steps (default 5 with --developed) and its screen output to
-<workdir>/p<p_i>.log. Running the same command again resumes: a finished
-pressure (<workdir>/p<p_i>/sweep_done.txt) is only tabulated, an
-unfinished one with a checkpoint restarts from it, the others start anew;
-the wall time is summed over the sessions. The table's 'end' column says
+<workdir>/p<p_i>.log. Running the same command again resumes (with or
+without --developed): a finished pressure (<workdir>/p<p_i>/sweep_done.txt;
+delete it to run that pressure again) is only tabulated, an unfinished
+one with a checkpoint restarts from it, the others start anew;
+the wall time is summed over the sessions (a killed session up to its
+last statistics row). The table's 'end' column says
 why each run ended: reach, stalled, time (end time or max steps).
 """
 import argparse
@@ -140,6 +142,18 @@ def run_one(args, text, p):
     cmd = [args.softsand, prm]
     if args.ranks > 1:
         cmd = ['mpirun', '-np', str(args.ranks)] + cmd
+    os.makedirs(outdir, exist_ok=True)
+    running_file = os.path.join(outdir, 'sweep_running.txt')
+    earlier = float(open(wall_file).read()) if os.path.exists(wall_file) else 0
+    if os.path.exists(running_file):
+        # The last session was killed: count it up to its last row (its
+        # statistics wall_time runs from that process's start).
+        try:
+            earlier += prm_tools.read_statistics(outdir)[-1]['wall_time']
+        except (OSError, ValueError, IndexError, KeyError):
+            pass
+    with open(running_file, 'w') as f:
+        f.write('%s\n' % time.ctime())
     start = time.time()
     with open(os.path.join(args.workdir, name + '.log'), 'a') as log:
         log.write('# %s%s\n' % (' '.join(cmd),
@@ -148,12 +162,10 @@ def run_one(args, text, p):
         proc = subprocess.run(cmd, stdout=log, stderr=subprocess.PIPE,
                               text=True)
         log.write(proc.stderr)
-    wall = time.time() - start
-    if os.path.exists(wall_file):
-        wall += float(open(wall_file).read())
-    os.makedirs(outdir, exist_ok=True)
+    wall = earlier + time.time() - start
     with open(wall_file, 'w') as f:
         f.write('%.1f\n' % wall)
+    os.remove(running_file)
     if proc.returncode != 0:
         return dict(p=p, error=' '.join(proc.stderr.strip().splitlines()[-1:]),
                     wall=wall)

@@ -18,6 +18,9 @@ writes into --workdir (default output/hele_shaw_scene_<scale>):
                              or hele_shaw.prm) reading pack.txt, its pistons
                              where stage 2 left them; output in
                              <workdir>/injection
+--cohesion sets the cohesion energy density of stage 2 and the injection
+(J/m^3; default the templates' 3e5), --confining-pressure the pistons'
+servo pressure in all three (Pa; default 5e3): the regime map's packs.
 Each stage prints whether its pack settled (the DEM's own warning says so
 when it did not). Then run `build/softsand <workdir>/injection.prm`, or the
 sweep: `python3 scripts/hele_shaw_sweep.py --scene <workdir>/injection.prm`.
@@ -95,7 +98,21 @@ def main():
     a.add_argument('--workdir', default=None)
     a.add_argument('--softsand', default='build/softsand')
     a.add_argument('--ranks', type=int, default=1)
+    a.add_argument('--cohesion', type=float, default=None,
+                   help='cohesion energy density of stage 2 and the '
+                        'injection (J/m^3)')
+    a.add_argument('--confining-pressure', type=float, default=None,
+                   help="the pistons' servo pressure in every stage (Pa)")
     args = a.parse_args()
+    if args.cohesion is not None and args.cohesion < 0:
+        sys.exit('--cohesion must be >= 0, got %g' % args.cohesion)
+    if args.confining_pressure is not None and not args.confining_pressure > 0:
+        sys.exit('--confining-pressure must be > 0, got %g'
+                 % args.confining_pressure)
+    confining = ([] if args.confining_pressure is None else
+                 [('dem/walls/servo pressure', '%g' % args.confining_pressure)])
+    cohesion = ([] if args.cohesion is None else
+                [('dem/material/cohesion energy density', '%g' % args.cohesion)])
     count, inlet, stage1, stage2, scene = SCALES[args.scale]
     if args.workdir is None:
         args.workdir = 'output/hele_shaw_scene_' + args.scale
@@ -113,10 +130,12 @@ def main():
 
     s1 = run_stage(args, 'stage1', stage1,
                    [('grains/file', loose),
-                    ('dem/walls/octagon', '0, 0, %.6e' % inradius)])
+                    ('dem/walls/octagon', '0, 0, %.6e' % inradius)]
+                   + confining)
     s2 = run_stage(args, 'stage2', stage2,
                    [('grains/file', os.path.join(s1, 'pack.txt')),
-                    ('dem/walls/octagon', octagon_after(s1))])
+                    ('dem/walls/octagon', octagon_after(s1))]
+                   + confining + cohesion)
     pack = os.path.join(args.workdir, 'pack.txt')
     shutil.copyfile(os.path.join(s2, 'pack.txt'), pack)
     with open(scene) as f:
@@ -124,7 +143,8 @@ def main():
     for path, value in [('grains/file', pack),
                         ('dem/walls/octagon', octagon_after(s2)),
                         ('output/directory',
-                         os.path.join(args.workdir, 'injection'))]:
+                         os.path.join(args.workdir, 'injection'))] + \
+            confining + cohesion:
         text = prm_tools.set_entry(text, path, value)
     with open(os.path.join(args.workdir, 'injection.prm'), 'w') as f:
         f.write(text)
