@@ -68,9 +68,14 @@ def problems(a):
     coupled = [('simulation control/max time steps', str(a.steps)),
                ('output/output interval', '1000000')]
     return {
-        'hele_shaw': ('parameters/hele_shaw.prm', coupled,
-                      'radial_permeability'),
-        # The Stokes solve of the study (the scene itself is transient).
+        # The Stokes solves of the study (the scenes themselves are
+        # transient since stop 28; the study's settings before it).
+        'hele_shaw': ('parameters/hele_shaw.prm', coupled + [
+            ('coupling/fluid model', 'quasi-steady'),
+            ('simulation control/time step', '1e-3'),
+            ('fluid/free contact cells', 'automatic'),
+            ('fluid solver/linear tolerance', '3e-5')],
+            'radial_permeability'),
         'hele_shaw_small': ('parameters/hele_shaw_small.prm', coupled + [
             ('coupling/fluid model', 'quasi-steady'),
             ('simulation control/time step', '1e-3')],

@@ -221,6 +221,24 @@ namespace softsand
     }
 
 
+    FractureMap
+    fracture_map_of_cell(const std::vector<dem::Grain<3>> &grains,
+                         const fluid::PressureRegion<3>   &inlet,
+                         const Point<3>                   &lower_corner,
+                         const Point<3>                   &upper_corner,
+                         const FractureAreaParameters     &parameters)
+    {
+      return FractureMap(grains,
+                         Point<2>(lower_corner[0], lower_corner[1]),
+                         Point<2>(upper_corner[0], upper_corner[1]),
+                         lower_corner[2],
+                         upper_corner[2],
+                         Point<2>(inlet.center[0], inlet.center[1]),
+                         inlet.radius,
+                         parameters);
+    }
+
+
     void
     FractureMap::write_pgm(const std::string &filename) const
     {

@@ -37,14 +37,8 @@ namespace softsand
       double values[3] = {0, 0, 0};
       if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         {
-          const FractureMap map(grains,
-                                Point<2>(lower_corner[0], lower_corner[1]),
-                                Point<2>(upper_corner[0], upper_corner[1]),
-                                lower_corner[2],
-                                upper_corner[2],
-                                Point<2>(inlet.center[0], inlet.center[1]),
-                                inlet.radius,
-                                parameters);
+          const FractureMap map = fracture_map_of_cell(
+            grains, inlet, lower_corner, upper_corner, parameters);
           values[0] = map.fracture_area();
           values[1] = map.reach();
           values[2] = map.pixel_area();

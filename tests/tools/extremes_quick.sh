@@ -2,7 +2,8 @@
 # Test 'extremes_quick': the cheap subset of scripts/extremes_suite.py
 # (--quick), then scripts/scan_outputs.py over every output of it, and
 # negative controls (the scanner must flag a NaN and an Inf in text tables
-# and in compressed binary VTU arrays).
+# and in compressed binary VTU arrays), and an argument after the parameter
+# file refused with a message.
 # Usage: extremes_quick.sh SOURCE_DIR SOFTSAND WORKDIR
 set -euo pipefail
 src=$1 softsand=$2 work=$3
@@ -20,4 +21,9 @@ if python3 scripts/scan_outputs.py "$work/control" > "$work/control.log"; then
 fi
 grep -c 'control/' "$work/control.log"
 python3 tests/tools/scan_outputs_control.py "$work/vtu_control"
+# Arguments after the parameter file are refused, not dropped.
+if "$softsand" parameters/drag_sphere.prm --set x > "$work/extra_args.log" 2>&1; then
+  echo "softsand ran with an argument after the parameter file"; exit 1
+fi
+grep -q "unexpected argument '--set'" "$work/extra_args.log"
 echo "extremes_quick: passed"

@@ -5,6 +5,7 @@
 #include <deal.II/base/point.h>
 
 #include <softsand/dem/grain.h>
+#include <softsand/fluid/pressure_region.h>
 
 #include <string>
 #include <vector>
@@ -155,6 +156,17 @@ namespace softsand
       std::vector<State> state;
       double             area = 0, all_open_area = 0, largest_distance = 0;
     };
+
+
+    /// The map of a radial Hele-Shaw cell: the plates at the z ends of the
+    /// box [@p lower_corner, @p upper_corner], the inlet region's axis
+    /// along z.
+    FractureMap
+    fracture_map_of_cell(const std::vector<dem::Grain<3>> &grains,
+                         const fluid::PressureRegion<3>   &inlet,
+                         const Point<3>                   &lower_corner,
+                         const Point<3>                   &upper_corner,
+                         const FractureAreaParameters     &parameters);
   } // namespace postprocess
 } // namespace softsand
 

@@ -31,16 +31,8 @@ namespace softsand
       double areas[3] = {0, 0, 0};
       if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         {
-          const auto          &lo = lower_corner;
-          const auto          &hi = upper_corner;
-          const FractureMap map(s.grains,
-                                Point<2>(lo[0], lo[1]),
-                                Point<2>(hi[0], hi[1]),
-                                lo[2],
-                                hi[2],
-                                Point<2>(inlet.center[0], inlet.center[1]),
-                                inlet.radius,
-                                parameters);
+          const FractureMap map = fracture_map_of_cell(
+            s.grains, inlet, lower_corner, upper_corner, parameters);
           areas[0] = map.fracture_area();
           areas[1] = map.open_area();
           areas[2] = map.reach();
