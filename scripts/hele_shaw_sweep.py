@@ -92,9 +92,7 @@ def run_one(args, text, p):
     done_file = os.path.join(outdir, 'sweep_done.txt')
     wall_file = os.path.join(outdir, 'sweep_wall.txt')
     if os.path.exists(done_file):
-        r = summarize_one(args, p)
-        r['end'] = open(done_file).read().split()[0]
-        return r
+        return summarize_one(args, p)
     overrides = [('boundary conditions/inlet region/pressure', '%g' % p)]
     if args.developed:
         overrides += [
@@ -169,12 +167,10 @@ def run_one(args, text, p):
     if proc.returncode != 0:
         return dict(p=p, error=' '.join(proc.stderr.strip().splitlines()[-1:]),
                     wall=wall)
-    reason = end_reason(open(os.path.join(args.workdir, name + '.log')).read())
     with open(done_file, 'w') as f:
-        f.write(reason + '\n')
-    r = summarize_one(args, p)
-    r.update(end=reason, wall=wall)
-    return r
+        f.write(end_reason(open(os.path.join(args.workdir,
+                                             name + '.log')).read()) + '\n')
+    return summarize_one(args, p)
 
 
 def summarize_one(args, p):

@@ -172,8 +172,7 @@ namespace softsand
                      g.diameter() * g.diameter() / (18 * p.fluid.viscosity));
       warn_about_fluid_model(p, !fluid.grains().empty(), mpi_communicator);
       warn_about_response_time();
-      if (p.fracture_area.enabled &&
-          (p.fracture_area.stop_reach > 0 || p.fracture_area.stop_stall_steps > 0))
+      if (p.fracture_area.enabled && p.fracture_area.stops_set())
         fracture_development =
           std::make_unique<postprocess::FractureDevelopment>(
             p.fracture_area,

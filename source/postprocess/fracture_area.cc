@@ -79,7 +79,7 @@ namespace softsand
       outer_radius   = prm.get_double("outer radius");
       stop_reach       = prm.get_double("stop at reach");
       stop_stall_steps = prm.get_integer("stop when stalled over");
-      if (!enabled && (stop_reach > 0 || stop_stall_steps > 0))
+      if (!enabled && stops_set())
         base::throw_invalid_parameter(
           "postprocessing/fracture area/" +
             std::string(stop_reach > 0 ? "stop at reach" :
@@ -173,13 +173,17 @@ namespace softsand
                               std::numeric_limits<double>::max();
       std::deque<unsigned int> front;
       const double             pixel_area = pixel * pixel;
+      // Squared distance of pixel k's centre from the inlet axis.
+      const auto distance2 = [&](const unsigned int k) {
+        const double dx = origin[0] + (k % nx + 0.5) * pixel - inlet_center[0];
+        const double dy = origin[1] + (k / nx + 0.5) * pixel - inlet_center[1];
+        return dx * dx + dy * dy;
+      };
       for (unsigned int j = 0; j < ny; ++j)
         for (unsigned int i = 0; i < nx; ++i)
           {
             const unsigned int k  = j * nx + i;
-            const double       dx = origin[0] + (i + 0.5) * pixel - inlet_center[0];
-            const double       dy = origin[1] + (j + 0.5) * pixel - inlet_center[1];
-            const double       d2 = dx * dx + dy * dy;
+            const double       d2 = distance2(k);
             if (d2 < inlet_radius * inlet_radius)
               {
                 state[k] = inlet;
@@ -202,10 +206,8 @@ namespace softsand
               {
                 state[n] = connected;
                 area += pixel_area;
-                const double dx = origin[0] + (n % nx + 0.5) * pixel - inlet_center[0];
-                const double dy = origin[1] + (n / nx + 0.5) * pixel - inlet_center[1];
                 largest_distance =
-                  std::max(largest_distance, std::sqrt(dx * dx + dy * dy));
+                  std::max(largest_distance, std::sqrt(distance2(n)));
                 front.push_back(n);
               }
           };

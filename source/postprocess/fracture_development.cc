@@ -32,7 +32,7 @@ namespace softsand
     std::string
     FractureDevelopment::check(const std::vector<dem::Grain<3>> &grains)
     {
-      if (!enabled())
+      if (!parameters.stops_set())
         return "";
       double values[3] = {0, 0, 0};
       if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

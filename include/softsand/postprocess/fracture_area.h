@@ -41,6 +41,13 @@ namespace softsand
       /// pixel over this many coupling steps (0: never).
       unsigned int stop_stall_steps = 0;
 
+      /// Whether a coupled run may end at a developed fracture.
+      bool
+      stops_set() const
+      {
+        return stop_reach > 0 || stop_stall_steps > 0;
+      }
+
       static void
       declare_parameters(ParameterHandler &prm);
       void

@@ -33,13 +33,6 @@ namespace softsand
                           const Point<3>                 &upper_corner,
                           const MPI_Comm                  comm);
 
-      /// Whether any stop is set.
-      bool
-      enabled() const
-      {
-        return parameters.stop_reach > 0 || parameters.stop_stall_steps > 0;
-      }
-
       /**
        * Record the map of @p grains (every rank holds them; rank 0 computes
        * it) and return why the fracture counts as developed, or an empty
