@@ -32,6 +32,17 @@ namespace softsand
         "Quasi-steady fluid: the coupling step lets the fastest grain move at "
         "most this fraction of the finest cell edge (dimensionless, > 0), "
         "and at most simulation control/time step.");
+      prm.declare_entry(
+        "max courant number",
+        "0",
+        Patterns::Double(0),
+        "Transient fluid: halve the coupling step (simulation control/time "
+        "step, halved up to 10 times) while the largest cell Courant number "
+        "|u| dt / h of the last fluid solution exceeds this, and take it "
+        "back up when the flow allows (dimensionless; 0: fixed steps). The "
+        "velocity V-cycle of the Oseen step fails at Courant numbers of a "
+        "few (doc/solver_study.md). With fluid/solid model = penalization "
+        "the step is also the penalty's time scale: leave it 0 there.");
       prm.declare_entry("dem substeps",
                         "0",
                         Patterns::Integer(0),
@@ -93,6 +104,7 @@ namespace softsand
         base::throw_invalid_parameter("coupling/max displacement fraction",
                                       prm.get("max displacement fraction"),
                                       "a fraction of the finest cell in (0, 4]");
+      max_courant_number = prm.get_double("max courant number");
       dem_substeps    = prm.get_integer("dem substeps");
       added_mass_coefficient = prm.get_double("added mass coefficient");
       buoyancy        = prm.get_bool("buoyancy");

@@ -42,6 +42,8 @@ namespace softsand
           // The measured resistances: the restarted run must linearize
           // the held forces as the uninterrupted one.
           held_force->save(info);
+          // The last step's length: BDF2 goes on only with equal steps.
+          info << fluid.solver().last_transient_step() << '\n';
         }
       commit_checkpoint(dir, step, "coupled", info.str(), mpi_communicator);
     }
@@ -61,12 +63,15 @@ namespace softsand
         for (unsigned int d = 0; d < 3; ++d)
           info >> c[d];
       held_force->load(info, dir + "/checkpoint.info");
+      double last_step = 0; // absent from older checkpoints
+      if (!(info >> last_step))
+        last_step = 0;
 
       // The coarse mesh as at the start, then the saved refinement.
       fluid.make_mesh(false, true);
       fluid.triangulation().load(base + ".fluid");
       fluid.solver().set_solid_field(nullptr);
-      fluid.solver().deserialize(fluid_steps);
+      fluid.solver().deserialize(fluid_steps, last_step);
       fluid.solver().set_time(time);
 
       std::ifstream in = open_checkpoint_file(base + ".dem");

@@ -207,7 +207,7 @@ namespace softsand
 
 
     double
-    CoupledScene::choose_time_step() const
+    CoupledScene::choose_time_step()
     {
       const auto &sc = parameters.simulation_control;
       double      dt = sc.time_step;
@@ -222,8 +222,38 @@ namespace softsand
                           parameters.coupling.max_displacement_fraction *
                             finest_cell / max_speed);
           dt = std::min(dt, response_time);
+          return std::min(dt, sc.end_time - time);
         }
-      return std::min(dt, sc.end_time - time);
+      // Transient: halvings of the scene's step keep the steps equal (BDF2)
+      // over long stretches.
+      const double rate  = fluid.solver().max_velocity_per_cell_size();
+      const double limit = parameters.coupling.max_courant_number;
+      if (limit > 0)
+        for (unsigned int halvings = 0; halvings < 10 && dt * rate > limit;
+             ++halvings)
+          dt /= 2;
+      dt             = std::min(dt, sc.end_time - time);
+      courant_number = dt * rate;
+      warn_about_courant_number();
+      return dt;
+    }
+
+
+    void
+    CoupledScene::warn_about_courant_number() const
+    {
+      const double limit = parameters.coupling.max_courant_number;
+      if (courant_number <= 1.5 || (limit > 0 && courant_number <= limit))
+        return;
+      std::ostringstream text;
+      text << std::setprecision(3) << "the transient fluid step runs at a cell "
+           << "Courant number |u| dt / h of " << courant_number << " at t = "
+           << time << " s (simulation control/time step = "
+           << parameters.simulation_control.time_step
+           << " s): the Oseen solve's iterations grow and it can fail above "
+              "about 1 (doc/solver_study.md). Set coupling/max courant number "
+              "(e.g. 1) to halve the step where the flow is fast.";
+      base::warn_once("coupling courant number", text.str(), mpi_communicator);
     }
 
 
@@ -334,6 +364,8 @@ namespace softsand
     CoupledScene::record_grains(const double dt)
     {
       statistics->add_value("coupling_time_step", dt);
+      if (courant_number >= 0)
+        statistics->add_value("courant_number", courant_number);
       const dem::GranularStatistics s =
         grain_columns.add_columns(*dem, *statistics, mpi_communicator);
       // A diverged exchange (fluid forces growing step by step) ends here,

@@ -38,6 +38,11 @@ namespace softsand
       /// control/time step).
       double max_displacement_fraction = 0.25;
 
+      /// Transient: the coupling step is simulation control/time step
+      /// halved until the largest cell Courant number is at most this (0:
+      /// fixed steps).
+      double max_courant_number = 0;
+
       /// DEM sub-steps per coupling step (0: as many as the DEM's stable
       /// step needs).
       unsigned int dem_substeps = 0;

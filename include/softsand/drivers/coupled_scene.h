@@ -51,9 +51,14 @@ namespace softsand
       set_up();
       /// The coupling step: the scene's, shortened in the quasi-steady
       /// model so that no grain moves more than a fraction of a cell and
-      /// the held drag does not outlast the grains' response time.
+      /// the held drag does not outlast the grains' response time, and in
+      /// the transient model halved to 'max courant number'.
       double
-      choose_time_step() const;
+      choose_time_step();
+      /// Warn once when a fixed transient step runs at a Courant number
+      /// where the Oseen solve degrades.
+      void
+      warn_about_courant_number() const;
       /// Re-adapt the fluid mesh once a grain moved a fraction of a cell.
       void
       follow_grains();
@@ -121,6 +126,9 @@ namespace softsand
       double finest_cell = 0;
       /// The grains' shortest response time (s).
       double response_time = 0;
+      /// Transient model: the largest cell Courant number of this step
+      /// (from the last fluid solution; -1: quasi-steady).
+      double courant_number = -1;
       /// Loop wall time of the last progress line (s).
       double last_report = -1e300;
     };

@@ -113,9 +113,23 @@ namespace softsand
       prepare_for_serialization();
 
       /// After Triangulation::load(): dofs and the solutions read back,
-      /// with the BDF step count @p steps_done of the checkpoint.
+      /// with the BDF step count @p steps_done of the checkpoint and the
+      /// length of its last step (0: unknown, taken equal to the next).
       void
-      deserialize(const unsigned int steps_done);
+      deserialize(const unsigned int steps_done,
+                  const double       previous_step = 0);
+
+      /// The length of the last advance() step (0 before the first).
+      double
+      last_transient_step() const
+      {
+        return previous_transient_step;
+      }
+
+      /// The largest |u| / h over the cells (h: a cell's shortest vertex
+      /// distance, u at its Gauss points): times a step, the Courant number.
+      double
+      max_velocity_per_cell_size() const;
 
       /// Time steps since start_time_stepping() (BDF1 on the first).
       unsigned int
@@ -358,11 +372,10 @@ namespace softsand
                  SolverParameters::SchurInnerSolver::direct :
                  SolverParameters::SchurInnerSolver::amg_cg;
       }
-      /// The constrained velocity DoFs (grains' rigid nodes, walls,
-      /// hanging nodes) as one number, the same on every rank: a hash of
-      /// their indices.
-      std::uint64_t
-      constrained_velocity_fingerprint() const;
+      /// The owned velocity DoFs that are constrained (grains' rigid
+      /// nodes, walls, hanging nodes).
+      IndexSet
+      constrained_velocity_dofs() const;
       /// Rigid nodes, matrix-based solves: smooth the pressure of cells
       /// whose velocity nodes are (nearly) all imposed (see
       /// FluidParameters) rather than pin it. The matrix-free path has the
@@ -413,7 +426,7 @@ namespace softsand
       solve_linear(const bool convection);
       /// (Re)build #preconditioner for the assembled system.
       void
-      build_preconditioner(const bool convection);
+      build_preconditioner(const bool convection, const IndexSet &constrained);
       /// The pressure-Laplacian coefficient 1/beta of the Schur
       /// approximation is capped where beta -> 0 (steady pure fluid) by
       /// this viscous scale mu / L^2 of the domain (both solve paths).
@@ -513,9 +526,9 @@ namespace softsand
       std::unique_ptr<BlockSchurPreconditioner> preconditioner;
       bool                                      preconditioner_convection = false;
       unsigned int                              preconditioner_iterations = 0;
-      /// constrained_velocity_fingerprint() when it was built: rigid nodes
-      /// that moved change the matrix it approximates.
-      std::uint64_t                             preconditioner_constraints = 0;
+      /// constrained_velocity_dofs() when it was built: rigid nodes that
+      /// grains entered or left change the matrix it approximates.
+      IndexSet                                  preconditioner_constraints;
       /// AMG sweeps of the velocity block in use: 'velocity amg sweeps',
       /// doubled (at most twice) for the rest of the run each time a solve
       /// with a new preconditioner fails (solve_linear()).
@@ -546,6 +559,9 @@ namespace softsand
       /// Pseudo-time cfl of the current Picard iteration (0: none).
       double                           pseudo_time_cfl   = 0;
       unsigned int                     steps_since_start = 0;
+      /// The last advance() step: a step of another length restarts BDF2
+      /// with BDF1 (its coefficients assume equal steps).
+      double                           previous_transient_step = 0;
       SolveStatistics                  statistics;
       /// Rigid-node model: velocity dof -> grain whose rigid velocity it is
       /// constrained to, and the reactions (grain, node, force) of the

@@ -1,0 +1,108 @@
+// The transient coupling step under 'coupling/max courant number': a sphere
+// thrown at 0.1 m/s across a slow stream, with a scene step (8 ms) at which
+// the grain's rigid velocity alone gives a cell Courant number of about 2.5.
+// The step must be halved (in powers of two of the scene's step) until
+// |u| dt / h <= 0.5 on every step after the first, and the run must stay
+// what it was physically: the grain is slowed by the fluid, not sped up.
+// With fixed steps (limit 0) the same scene warns about its Courant number.
+
+#include <deal.II/base/mpi.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "test_scenes.h"
+#include "tests.h"
+
+namespace
+{
+  std::string
+  scene(const std::string &directory, const double limit)
+  {
+    std::ofstream("grain.txt") << "0 0 0 5e-4 0.1 0.02 0 0 0 0\n";
+    std::ostringstream s;
+    s << "set dimension = 3\n"
+         "subsection simulation control\n set mode = coupled\n"
+         " set time step = 8e-3\n set end time = 1.6e-2\nend\n"
+         "subsection coupling\n set readapt fraction = 0.2\n"
+         " set max courant number = "
+      << limit
+      << "\nend\n"
+         "subsection mesh\n set lower corner = -4e-3, -4e-3, -4e-3\n"
+         " set upper corner = 4e-3, 4e-3, 4e-3\n set cells per diameter = 3\n"
+         "end\n"
+         "subsection grains\n set source = file\n set file = grain.txt\nend\n"
+         "subsection dem\n subsection material\n  set density = 2650\n"
+         " end\nend\n"
+         "subsection fluid\n set density = 1000\n set viscosity = 1e-2\n"
+         " set solid model = rigid nodes\nend\n"
+         "subsection boundary conditions\n"
+         " subsection x min\n  set type = velocity\n"
+         "  set velocity = 2e-3, 0, 0\n end\n"
+         " subsection x max\n  set type = pressure\n end\n"
+         "end\n"
+         "subsection output\n set directory = "
+      << directory << "\n set write vtu = false\n set verbosity = quiet\nend\n";
+    return s.str();
+  }
+
+  /// Column @p name of every row of a statistics file.
+  std::vector<double>
+  column(const std::string &file, const std::string &name)
+  {
+    std::ifstream            in(file);
+    std::vector<std::string> names;
+    std::vector<double>      values;
+    for (std::string line; std::getline(in, line);)
+      {
+        if (line.empty() || line[0] == '#')
+          continue;
+        std::istringstream words(line);
+        std::vector<std::string> w;
+        for (std::string x; words >> x;)
+          w.push_back(x);
+        if (names.empty())
+          names = w;
+        else
+          for (unsigned int k = 0; k < names.size(); ++k)
+            if (names[k] == name)
+              values.push_back(std::stod(w[k]));
+      }
+    return values;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+  const auto limited = run_scene<3>(scene("limited", 0.5));
+  const auto dt = column("limited/statistics.txt", "coupling_time_step");
+  const auto co = column("limited/statistics.txt", "courant_number");
+  bool within = true, powers_of_two = true, halved = false;
+  for (unsigned int k = 0; k < dt.size(); ++k)
+    {
+      const double halvings = std::log2(8e-3 / dt[k]);
+      // The last step may be cut short by the end time.
+      if (k + 1 < dt.size())
+        powers_of_two =
+          powers_of_two && std::abs(halvings - std::round(halvings)) < 1e-9;
+      halved = halved || halvings > 0.5;
+      within = within && (k == 0 || co[k] <= 0.5 * (1 + 1e-12));
+    }
+  deallog << "steps: " << dt.size() << ", first " << dt.front()
+          << " s, smallest "
+          << *std::min_element(dt.begin(), dt.end()) << " s" << std::endl;
+  deallog << "step halved: " << (halved ? "yes" : "no")
+          << "; scene step / 2^k: " << (powers_of_two ? "yes" : "no")
+          << "; Courant number <= 0.5 after the first step: "
+          << (within ? "yes" : "no") << std::endl;
+  deallog << "grain slowed by the fluid (vx < 0.1 m/s): "
+          << (limited.at("grain0_vx") < 0.1 ? "yes" : "no") << std::endl;
+
+  run_scene<3>(scene("fixed", 0));
+  deallog << "fixed steps warned about the Courant number: "
+          << (warned("Courant number") ? "yes" : "no") << std::endl;
+}
