@@ -423,8 +423,8 @@ namespace softsand
             last_results["grain0_" + axis]  = fluid.grains()[0].center[d];
           }
       print_fluid_results(console.pcout, 3, last_results);
-      if (p.output.verbosity != io::OutputParameters::Verbosity::quiet)
-        timer.print_wall_time_statistics(mpi_communicator);
+      // On screen unless quiet, in log.txt always (console.progress).
+      timer.print_wall_time_statistics(mpi_communicator);
     }
   } // namespace drivers
 } // namespace softsand

@@ -61,8 +61,8 @@ namespace softsand
         march_in_time();
 
       print_fluid_results(console.pcout, dim, last_results);
-      if (p.output.verbosity != io::OutputParameters::Verbosity::quiet)
-        timer.print_wall_time_statistics(mpi_communicator);
+      // On screen unless quiet, in log.txt always (console.progress).
+      timer.print_wall_time_statistics(mpi_communicator);
     }
 
 

@@ -45,10 +45,17 @@ namespace softsand
       , tee_buffer(std::cout.rdbuf(),
                    log_file.is_open() ? log_file.rdbuf() : nullptr)
       , tee(&tee_buffer)
+      , log_only(log_file.is_open() ? log_file.rdbuf() : nullptr)
       , pcout(tee, Utilities::MPI::this_mpi_process(comm) == 0)
-      , progress(tee,
+      // A quiet run keeps its progress in log.txt: a long run in the
+      // background can be followed there.
+      , progress(output.verbosity == io::OutputParameters::Verbosity::quiet ?
+                   log_only :
+                   tee,
                  Utilities::MPI::this_mpi_process(comm) == 0 &&
-                   output.verbosity != io::OutputParameters::Verbosity::quiet)
+                   (log_file.is_open() ||
+                    output.verbosity !=
+                      io::OutputParameters::Verbosity::quiet))
     {
       if (log_file.is_open())
         base::set_warning_log(&log_file);

@@ -25,8 +25,10 @@ namespace softsand
       prm.declare_entry("verbosity",
                         "normal",
                         Patterns::Selection("quiet|normal|verbose"),
-                        "quiet: only the final results; normal: progress "
-                        "and timing; verbose: also nonlinear iterations.");
+                        "What the screen shows. quiet: only the final results "
+                        "(log.txt in the output directory still gets the "
+                        "progress and timing); normal: progress and timing; "
+                        "verbose: also nonlinear iterations.");
       prm.leave_subsection();
     }
 

@@ -43,6 +43,8 @@ namespace softsand
       std::ofstream   log_file;
       base::TeeBuffer tee_buffer;
       std::ostream    tee;
+      /// The log alone: where the progress of a quiet run goes.
+      std::ostream    log_only;
 
     public:
       ConditionalOStream pcout;
