@@ -250,9 +250,10 @@ namespace softsand
            << "Courant number |u| dt / h of " << courant_number << " at t = "
            << time << " s (simulation control/time step = "
            << parameters.simulation_control.time_step
-           << " s): the Oseen solve's iterations grow and it can fail above "
-              "about 1 (doc/solver_study.md). Set coupling/max courant number "
-              "(e.g. 1) to halve the step where the flow is fast.";
+           << " s): the Oseen solve's iterations grow above about 1.5 and "
+              "it failed at 2.5 (doc/solver_study.md). Set coupling/max "
+              "courant number (e.g. 1.5) to halve the step where the flow "
+              "is fast.";
       base::warn_once("coupling courant number", text.str(), mpi_communicator);
     }
 
