@@ -46,31 +46,6 @@ namespace
       << directory << "\n set write vtu = false\n set verbosity = quiet\nend\n";
     return s.str();
   }
-
-  /// Column @p name of every row of a statistics file.
-  std::vector<double>
-  column(const std::string &file, const std::string &name)
-  {
-    std::ifstream            in(file);
-    std::vector<std::string> names;
-    std::vector<double>      values;
-    for (std::string line; std::getline(in, line);)
-      {
-        if (line.empty() || line[0] == '#')
-          continue;
-        std::istringstream words(line);
-        std::vector<std::string> w;
-        for (std::string x; words >> x;)
-          w.push_back(x);
-        if (names.empty())
-          names = w;
-        else
-          for (unsigned int k = 0; k < names.size(); ++k)
-            if (names[k] == name)
-              values.push_back(std::stod(w[k]));
-      }
-    return values;
-  }
 } // namespace
 
 int
@@ -79,8 +54,9 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
   const auto limited = run_scene<3>(scene("limited", 0.5));
-  const auto dt = column("limited/statistics.txt", "coupling_time_step");
-  const auto co = column("limited/statistics.txt", "courant_number");
+  const auto  statistics = read_statistics("limited/statistics.txt");
+  const auto &dt         = statistics.at("coupling_time_step");
+  const auto &co         = statistics.at("courant_number");
   bool within = true, powers_of_two = true, halved = false;
   for (unsigned int k = 0; k < dt.size(); ++k)
     {

@@ -27,32 +27,6 @@
 
 namespace
 {
-  /// Columns of results/statistics.txt by name, one value per step.
-  std::map<std::string, std::vector<double>>
-  read_statistics()
-  {
-    std::ifstream                              in("results/statistics.txt");
-    std::vector<std::string>                   names;
-    std::map<std::string, std::vector<double>> columns;
-    for (std::string line; std::getline(in, line);)
-      {
-        std::istringstream words(line);
-        // The names line; '#' lines (a column and its unit each).
-        if (line.empty() || line[0] == '#')
-          continue;
-        if (std::isalpha(line[0]))
-          {
-            for (std::string name; words >> name;)
-              names.push_back(name);
-            continue;
-          }
-        double value;
-        for (unsigned int i = 0; i < names.size() && (words >> value); ++i)
-          columns[names[i]].push_back(value);
-      }
-    return columns;
-  }
-
   double
   largest(const std::map<std::string, std::vector<double>> &columns,
           const std::string                                 &name)
@@ -103,7 +77,7 @@ main(int argc, char **argv)
           "subsection fluid solver\n set linear tolerance = 1e-6\nend\n"
           "subsection output\n set directory = results\n"
           " set write vtu = false\n set verbosity = quiet\nend\n");
-        const auto   s     = read_statistics();
+        const auto   s     = read_statistics("results/statistics.txt");
         const double force = std::max({largest(s, "grain_force_x"),
                                        largest(s, "grain_force_y"),
                                        largest(s, "grain_force_z")});

@@ -12,12 +12,14 @@
 
 #include <deal.II/base/logstream.h>
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 /// Whether a warning containing @p text was given in this process.
 inline bool
@@ -41,6 +43,32 @@ scene_text(const std::string &name)
        << "subsection output\n set directory = results\n"
           " set write vtu = false\n set verbosity = quiet\nend\n";
   return text.str();
+}
+
+/// The columns of a statistics file by name, one value per row.
+inline std::map<std::string, std::vector<double>>
+read_statistics(const std::string &file)
+{
+  std::ifstream                              in(file);
+  std::vector<std::string>                   names;
+  std::map<std::string, std::vector<double>> columns;
+  for (std::string line; std::getline(in, line);)
+    {
+      std::istringstream words(line);
+      // The names line; '#' lines (a column and its unit each).
+      if (line.empty() || line[0] == '#')
+        continue;
+      if (std::isalpha(line[0]))
+        {
+          for (std::string name; words >> name;)
+            names.push_back(name);
+          continue;
+        }
+      double value;
+      for (unsigned int i = 0; i < names.size() && (words >> value); ++i)
+        columns[names[i]].push_back(value);
+    }
+  return columns;
 }
 
 template <int dim>
