@@ -56,6 +56,10 @@ namespace softsand
       set_up();
       const auto &sc = parameters.simulation_control;
       Timer       loop_clock;
+      // Where this process started (a checkpoint's step after a restart):
+      // the progress line's rates count this process's steps only.
+      first_step = step;
+      start_time = time;
       while (!sc.reached_end(time, step) && developed_fracture.empty())
         {
           ++step;
@@ -226,7 +230,11 @@ namespace softsand
         }
       // Transient: halvings of the scene's step keep the steps equal (BDF2)
       // over long stretches.
-      const double rate  = fluid.solver().max_velocity_per_cell_size();
+      double rate = 0;
+      {
+        TimerOutput::Scope t(timer, "fluid: courant number");
+        rate = fluid.solver().max_velocity_per_cell_size();
+      }
       const double limit = parameters.coupling.max_courant_number;
       if (limit > 0)
         for (unsigned int halvings = 0; halvings < 10 && dt * rate > limit;
@@ -396,12 +404,15 @@ namespace softsand
       last_report = now;
       console.progress
         << "   step " << step << ", t = " << time << " s ("
-        << progress_of(time, parameters.simulation_control.end_time, now)
+        << progress_of(time,
+                       start_time,
+                       parameters.simulation_control.end_time,
+                       now)
         << "), " << fluid.triangulation().n_global_active_cells()
         << " cells, " << fluid.solver().get_statistics().linear_iterations
         << " FGMRES iterations, grain 0 at "
         << (fluid.grains().empty() ? Point<3>() : fluid.grains()[0].center)
-        << ", " << now / step << " s per step" << std::endl;
+        << ", " << now / (step - first_step) << " s per step" << std::endl;
     }
 
 

@@ -120,6 +120,7 @@ namespace softsand
         }
       Timer        loop_clock;
       double       last_report = -1e300;
+      const double start_time  = time;
       while (!sc.reached_end(time, step))
         {
           ++step;
@@ -140,7 +141,7 @@ namespace softsand
               last_report = loop_clock.wall_time();
               console.progress
                 << "   step " << step << ", t = " << time << " s ("
-                << progress_of(time, sc.end_time, last_report) << "), "
+                << progress_of(time, start_time, sc.end_time, last_report) << "), "
                 << solver.get_statistics().linear_iterations
                 << " FGMRES iterations, relative change "
                 << solver.relative_velocity_change() << std::endl;

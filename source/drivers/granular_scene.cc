@@ -35,6 +35,7 @@ namespace softsand
           write_grains();
         }
       loop_clock.restart();
+      start_time = dem->time();
       bool               last_recorded = true;
       const unsigned int checkpoint_interval =
         parameters.simulation_control.checkpoint_interval;
@@ -226,6 +227,7 @@ namespace softsand
         return;
       console.progress << "  t = " << dem->time() << " s ("
                        << progress_of(dem->time(),
+                                      start_time,
                                       parameters.simulation_control.end_time,
                                       loop_clock.wall_time())
                        << "), step " << dem->step_number() << ", dt "

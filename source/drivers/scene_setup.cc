@@ -234,16 +234,18 @@ namespace softsand
 
     std::string
     progress_of(const double time,
+                const double start_time,
                 const double end_time,
                 const double loop_seconds)
     {
       const double       done = end_time > 0 ? time / end_time : 1;
+      const double       run  = time - start_time;
       std::ostringstream s;
       s << std::fixed << std::setprecision(1) << 100 * done
         << " % of the end time";
-      if (done > 0 && done < 1)
+      if (done > 0 && done < 1 && run > 0)
         s << ", about " << std::setprecision(0)
-          << loop_seconds * (1 - done) / done << " s left";
+          << loop_seconds * (end_time - time) / run << " s left";
       return s.str();
     }
 

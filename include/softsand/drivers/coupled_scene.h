@@ -131,6 +131,10 @@ namespace softsand
       double courant_number = -1;
       /// Loop wall time of the last progress line (s).
       double last_report = -1e300;
+      /// The step and time this process's loop started from (0, or a
+      /// checkpoint's).
+      unsigned int first_step = 0;
+      double       start_time = 0;
     };
   } // namespace drivers
 } // namespace softsand

@@ -101,8 +101,10 @@ namespace softsand
       double                  max_servo_error = 0;
       bool                    settled         = false;
       double                  next_report     = 10;
-      /// The DEM step this run started from (0, or a checkpoint's).
+      /// The DEM step and time this run started from (0, or a
+      /// checkpoint's).
       unsigned long           first_step      = 0;
+      double                  start_time      = 0;
     };
   } // namespace drivers
 } // namespace softsand

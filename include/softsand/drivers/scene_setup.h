@@ -119,9 +119,13 @@ namespace softsand
                   io::StatisticsFile            &statistics);
 
     /// For progress lines: "P % of the end time, about S s left" from the
-    /// time reached and the wall time its loop took.
+    /// time reached and the wall time its loop took since it started at
+    /// @p start_time (a restarted run's rate is that of its own steps).
     std::string
-    progress_of(const double time, const double end_time, const double loop_seconds);
+    progress_of(const double time,
+                const double start_time,
+                const double end_time,
+                const double loop_seconds);
 
     /// The fixed-format results block that tests diff with numdiff, the
     /// entries of @p results but those @p left_out (timings, counts).
