@@ -39,7 +39,8 @@ namespace softsand
         "Transient fluid: halve the coupling step (simulation control/time "
         "step, halved up to 10 times) while the largest cell Courant number "
         "|u| dt / h of the last fluid solution exceeds this, and take it "
-        "back up when the flow allows (dimensionless; 0: fixed steps). The "
+        "back up where the longer step, whose first step is BDF1, stays "
+        "within 1/1.5 of this (dimensionless; 0: fixed steps). The "
         "velocity V-cycle of the Oseen step fails at Courant numbers of a "
         "few (doc/solver_study.md). With fluid/solid model = penalization "
         "the step is also the penalty's time scale: leave it 0 there.");
