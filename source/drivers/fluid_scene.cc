@@ -141,7 +141,8 @@ namespace softsand
               last_report = loop_clock.wall_time();
               console.progress
                 << "   step " << step << ", t = " << time << " s ("
-                << progress_of(time, start_time, sc.end_time, last_report) << "), "
+                << progress_of(time, start_time, sc.end_time, last_report)
+                << "), "
                 << solver.get_statistics().linear_iterations
                 << " FGMRES iterations, relative change "
                 << solver.relative_velocity_change() << std::endl;
