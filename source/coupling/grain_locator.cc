@@ -32,8 +32,9 @@ namespace softsand
               hi[d] = std::max(hi[d], g.center[d] + g.radius);
             }
         }
-      bin_size = 2 * r_max;
-      origin   = lo;
+      max_radius = r_max;
+      bin_size   = 2 * r_max;
+      origin     = lo;
       // Keep the grid to a few million bins even for very spread-out sets.
       std::size_t total = 1;
       for (unsigned int d = 0; d < dim; ++d)
@@ -90,8 +91,9 @@ namespace softsand
       indices.clear();
       if (grain_list.empty())
         return;
-      // A grain of radius <= bin_size/2 centred in bin b reaches at most one
-      // bin further, so scan the box's bins grown by one.
+      // A grain meets the box only if its centre lies within max_radius of
+      // it: scan the bins of the box grown by max_radius (for a point, 2
+      // bins per direction instead of the 3 of the box's bin grown by one).
       Point<dim> lo = box.get_boundary_points().first,
                  hi = box.get_boundary_points().second;
       for (unsigned int d = 0; d < dim; ++d)
@@ -101,12 +103,15 @@ namespace softsand
               lo[d] > origin[d] + (n_bins[d] + 1) * bin_size)
             return;
         }
-      std::array<int, dim> b0 = bin_of(lo), b1 = bin_of(hi);
+      // (A margin over max_radius keeps rounding from dropping a grain.)
+      const double reach    = max_radius * (1. + 1e-9);
+      Point<dim>   reach_lo = lo, reach_hi = hi;
       for (unsigned int d = 0; d < dim; ++d)
         {
-          b0[d] = std::max(0, b0[d] - 1);
-          b1[d] = std::min(n_bins[d] - 1, b1[d] + 1);
+          reach_lo[d] -= reach;
+          reach_hi[d] += reach;
         }
+      const std::array<int, dim> b0 = bin_of(reach_lo), b1 = bin_of(reach_hi);
       std::array<int, dim> b = b0;
       while (true)
         {

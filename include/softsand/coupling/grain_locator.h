@@ -71,6 +71,7 @@ namespace softsand
       std::array<int, dim>                n_bins{};
       std::vector<std::vector<unsigned int>> bins;
       double                              min_grain_diameter = 0;
+      double                              max_radius         = 0;
 
       std::array<int, dim>
       bin_of(const Point<dim> &x) const;
