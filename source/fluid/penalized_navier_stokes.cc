@@ -771,7 +771,7 @@ namespace softsand
         if (component[k] < dim)
           velocity_dof[component[k]][fe.system_to_component_index(k).second] =
             k;
-      std::vector<double>         scalar_block(n_scalar * n_scalar);
+      FullMatrix<double>          scalar_block(n_scalar, n_scalar);
       std::vector<double>         scalar_value(n_scalar), w_dot_grad(n_scalar);
       std::vector<Tensor<1, dim>> scalar_grad(n_scalar);
       const bool one_scalar_block = (kind != Assembly::steady_newton);
@@ -797,7 +797,7 @@ namespace softsand
             local_mass    = 0;
             local_laplace = 0;
             local_rhs     = 0;
-            std::fill(scalar_block.begin(), scalar_block.end(), 0.);
+            scalar_block  = 0;
 
             // Rigid nodes: the grain acts through constraints only.
             if (solid_field != nullptr && !rigid_nodes())
@@ -987,7 +987,7 @@ namespace softsand
                       {
                         const double phi_a    = scalar_value[a];
                         const double advect_a = convection ? rho * phi_a : 0.;
-                        double      *row      = &scalar_block[a * n_scalar];
+                        double      *row      = &scalar_block(a, 0);
                         for (unsigned int b = 0; b < n_scalar; ++b)
                           {
                             double v = mu * (scalar_grad[a] * scalar_grad[b]) +
@@ -1063,7 +1063,7 @@ namespace softsand
                 for (unsigned int a = 0; a < n_scalar; ++a)
                   for (unsigned int b = 0; b < n_scalar; ++b)
                     local_matrix(velocity_dof[c][a], velocity_dof[c][b]) +=
-                      scalar_block[a * n_scalar + b];
+                      scalar_block(a, b);
             for (const unsigned int i : dofs_of_component[dim])
               for (unsigned int cj = 0; cj < dim; ++cj)
                 for (const unsigned int j : dofs_of_component[cj])
