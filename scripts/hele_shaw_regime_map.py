@@ -17,7 +17,9 @@ confining pressure, and every confining pressure at --reference-cohesion
 point whose sweep finished is only read again, so the command resumes.
 Options after '--' go to the sweep (e.g. -- --developed --stall-steps 40).
 Prints and writes <workdir>/regime_map.txt: c, sigma, the bracket, its
-geometric mean p_c and p_c / sigma. Run from the repository root.
+geometric mean p_c and p_c / sigma, or FAILED and why (a pack that could
+not be prepared, a sweep whose runs all failed). Run from the repository
+root.
 """
 import argparse
 import math
@@ -33,10 +35,16 @@ def floats(text):
     return [float(v) for v in text.split(',') if v.strip()]
 
 
+class PointFailed(Exception):
+    """A point whose pack could not be prepared or whose runs all failed."""
+
+
 def bracket(sweep_table):
     """(below, above) from a sweep.txt: None where the sweep did not
     bracket (every pressure fractured, or none)."""
     text = open(sweep_table).read()
+    if 'no critical pressure' in text:
+        raise PointFailed('every run of the sweep failed, see ' + sweep_table)
     m = re.search(r'critical pressure between (\S+) and (\S+) Pa', text)
     if m:
         return float(m.group(1)), float(m.group(2))
@@ -53,12 +61,15 @@ def run_point(args, sweep_args, cohesion, sigma):
     point = os.path.join(args.workdir, 'c%g_s%g' % (cohesion, sigma))
     scene = os.path.join(point, 'injection.prm')
     if not os.path.exists(scene):
-        subprocess.run([sys.executable, os.path.join(HERE,
-                                                     'make_hele_shaw_scene.py'),
-                        '--scale', args.scale, '--workdir', point,
-                        '--cohesion', '%g' % cohesion,
-                        '--confining-pressure', '%g' % sigma,
-                        '--softsand', args.softsand], check=True)
+        made = subprocess.run([sys.executable,
+                               os.path.join(HERE, 'make_hele_shaw_scene.py'),
+                               '--scale', args.scale, '--workdir', point,
+                               '--cohesion', '%g' % cohesion,
+                               '--confining-pressure', '%g' % sigma,
+                               '--softsand', args.softsand])
+        if made.returncode != 0:
+            raise PointFailed('the pack could not be prepared, see the '
+                              'stage logs in ' + point)
     sweep_dir = os.path.join(point, 'sweep')
     table = os.path.join(sweep_dir, 'sweep.txt')
     pressures = ','.join('%g' % (r * sigma) for r in args.ratios)
@@ -105,7 +116,12 @@ def main():
              '# cohesion[J/m^3] sigma[Pa] p_below[Pa] p_above[Pa] '
              'p_c[Pa] p_c/sigma']
     for c, s in points:
-        below, above = run_point(args, sweep_args, c, s)
+        try:
+            below, above = run_point(args, sweep_args, c, s)
+        except PointFailed as e:
+            lines.append('%g %g FAILED: %s' % (c, s, e))
+            print(lines[-1], flush=True)
+            continue
         pc = (math.sqrt(below * above) if below and above else float('nan'))
         lines.append('%g %g %s %s %.4g %.3g' % (
             c, s, '-' if below is None else '%g' % below,

@@ -283,16 +283,25 @@ def main():
     if any('k_ratio' in r and math.isnan(r['k_ratio']) for r in results):
         lines.append("# K_end/K_start '-': the transient model's flow starts "
                      "from rest, its first step's K is not the pack's")
-    if above is not None and below is not None:
+    failed = [r['p'] for r in results if 'error' in r]
+    if failed:
+        lines.append('# %d of %d runs failed (%s Pa): %s' % (
+            len(failed), len(results), ','.join('%g' % p for p in failed),
+            'no critical pressure' if len(failed) == len(results) else
+            'the bracket below uses the others only'))
+    if len(failed) == len(results):
+        pass
+    elif above is not None and below is not None:
         lines.append('# critical pressure between %g and %g Pa: %.3g Pa '
                      '(geometric mean)' % (below, above,
                                            math.sqrt(below * above)))
     elif above is None:
         lines.append('# no pressure fractured: critical pressure above %g Pa'
-                     % max(pressures))
+                     % max(r['p'] for r in results if 'error' not in r))
     else:
         lines.append('# every pressure fractured: critical pressure below '
-                     '%g Pa' % min(pressures))
+                     '%g Pa' % min(r['p'] for r in results
+                                   if 'error' not in r))
     os.makedirs(args.workdir, exist_ok=True)
     with open(os.path.join(args.workdir, 'summary.txt' if args.summarize
                            else 'sweep.txt'), 'w') as f:

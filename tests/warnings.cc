@@ -4,7 +4,8 @@
 // penalization, a coupling step above the grains' response time, a
 // creeping-flow model at pore Reynolds numbers above 1, a fluid solve
 // retried with a stronger velocity preconditioner, freed contact cells
-// that hand most of a pack to the fluid. Settings
+// that hand most of a pack to the fluid, grains overlapping beyond what
+// the contact law (and a grain file) accepts. Settings
 // a scene would ignore (restart, checkpoints outside coupled scenes) stop
 // it instead.
 
@@ -189,4 +190,46 @@ main(int argc, char **argv)
         deallog << mode << " with " << entry << ": " << stops(text)
                 << std::endl;
       }
+  // 9. Two grains at rest, touching, pulled together by the simplified JKR
+  // cohesion c A (A the circle where the spheres intersect) until Hertz
+  // balances it: 4/3 Y* sqrt(R*) d^1.5 = c pi (R d - d^2 / 4) for equal
+  // radii R. With the paper's soft grains (E = 5 MPa, nu = 0.15) the
+  // balance lies at 0.034 R* for c = 1e5 J/m^3, 0.28 R* for the scenes'
+  // 3e5 and 1.9 R* for 1e6: beyond grains/max overlap ratio = 0.3 the run
+  // warns that the contact law is outside its validity.
+  for (const double c : {1e5, 3e5, 1e6})
+    {
+      const double R = 1e-4, r_eff = R / 2;
+      const double y_eff = 5e6 / (2 * (1 - 0.15 * 0.15));
+      const auto   excess = [&](const double d) {
+        return 4. / 3. * y_eff * std::sqrt(r_eff) * std::pow(d, 1.5) -
+               c * M_PI * (R * d - d * d / 4);
+      };
+      double low = 1e-3 * r_eff, high = 3.9 * r_eff; // excess < 0, > 0
+      for (unsigned int k = 0; k < 100; ++k)
+        (excess(0.5 * (low + high)) < 0 ? low : high) = 0.5 * (low + high);
+      const auto r = run_granular_scene(
+        "subsection simulation control\n set mode = granular\n"
+        " set end time = 2e-3\nend\n"
+        "subsection mesh\n set lower corner = -5e-4, -5e-4, -5e-4\n"
+        " set upper corner = 5e-4, 5e-4, 5e-4\nend\n"
+        "subsection grains\n set source = list\n"
+        " set list = -0.995e-4, 0, 0, 1e-4; 0.995e-4, 0, 0, 1e-4\nend\n"
+        "subsection dem\n set gravity = 0, 0, 0\n subsection material\n"
+        "  set density = 2650\n  set youngs modulus = 5e6\n"
+        "  set poisson ratio = 0.15\n  set restitution = 0.3\n"
+        "  set cohesion energy density = " + std::to_string(c) +
+        "\n end\nend\n"
+        "subsection output\n set directory = results\n"
+        " set write vtu = false\n set verbosity = quiet\nend\n");
+      const double overlap = r.at("max_overlap_ratio");
+      deallog << "cohesive pair, c = " << c << ": overlap " << overlap
+              << " R*, balance " << low / r_eff << " R*, within 0.5 %: "
+              << (std::abs(overlap * r_eff / low - 1) < 5e-3 ? "yes" : "no")
+              << ", warned: "
+              << (warned("grains/max overlap ratio = 0.3: the contact law") ?
+                    "yes" :
+                    "no")
+              << std::endl;
+    }
 }

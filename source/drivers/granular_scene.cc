@@ -181,6 +181,27 @@ namespace softsand
       statistics->add_value("step", dem->step_number());
       last_statistics =
         grain_columns.add_columns(*dem, *statistics, mpi_communicator);
+      // Hertz-Mindlin and the simplified JKR cohesion are small-overlap
+      // laws: beyond the overlap the scene accepts in a grain file, say so
+      // (the paper's soft grains with 1e6 J/m^3 of cohesion reach 2 R*).
+      const double limit = parameters.grains.max_overlap_ratio;
+      if (last_statistics.max_overlap > limit)
+        {
+          std::ostringstream message;
+          message << std::setprecision(3) << "at t = " << dem->time()
+                  << " s two grains overlap by "
+                  << last_statistics.max_overlap
+                  << " R* (mean over contacts "
+                  << last_statistics.mean_overlap
+                  << "), more than grains/max overlap ratio = " << limit
+                  << ": the contact law (small overlaps) is outside its "
+                     "validity, and a grain file of this pack is refused "
+                     "at that ratio. "
+                     "Grains too soft (dem/material/youngs modulus) for "
+                     "this load, or cohesion (dem/material/cohesion energy "
+                     "density) pulling them together?";
+          base::warn_once("granular overlap", message.str(), mpi_communicator);
+        }
       statistics->add_value("wall_time", wall_clock.wall_time());
       statistics->write_row();
     }
