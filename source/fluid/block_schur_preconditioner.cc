@@ -3,6 +3,8 @@
 #include <deal.II/lac/solver_cg.h>
 
 #include <EpetraExt_MatrixMatrix.h>
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
 
 namespace softsand
 {
@@ -147,7 +149,8 @@ namespace softsand
       const SolverParameters::Schur              schur,
       const double                               inner_tolerance,
       const bool                                 direct_velocity_solve,
-      const SolverParameters::SchurInnerSolver   inner_solver)
+      const SolverParameters::SchurInnerSolver   inner_solver,
+      const bool                                 smoothed_aggregation)
       : system_matrix(system_matrix)
       , velocity_smoother(velocity_smoother)
       , schur(schur)
@@ -170,7 +173,17 @@ namespace softsand
         data.smoother_sweeps       = amg_sweeps;
         data.aggregation_threshold = 0.02;
         data.smoother_type         = this->velocity_smoother.c_str();
-        velocity_amg.initialize(system_matrix.block(0, 0), data);
+        Teuchos::ParameterList              ml_parameters;
+        std::unique_ptr<Epetra_MultiVector> distributed_modes;
+        data.set_parameters(ml_parameters,
+                            distributed_modes,
+                            system_matrix.block(0, 0));
+        // Plain aggregation: the block's mass or Brinkman term makes it
+        // well conditioned enough that the denser smoothed coarse levels
+        // cost more setup time and memory than they save in iterations.
+        if (!smoothed_aggregation)
+          ml_parameters.set("aggregation: damping factor", 0.);
+        velocity_amg.initialize(system_matrix.block(0, 0), ml_parameters);
       }
       if (schur != SolverParameters::Schur::least_squares_commutator)
         pressure_mass_ilu.initialize(pressure_mass_matrix.block(1, 1));

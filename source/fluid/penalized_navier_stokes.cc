@@ -1246,7 +1246,8 @@ namespace softsand
         solver_parameters.schur,
         solver_parameters.schur_inner_tolerance,
         solver_parameters.direct_velocity_solve,
-        schur_inner_solver());
+        schur_inner_solver(),
+        solver_parameters.velocity_amg_smoothed_aggregation);
       preconditioner_convection  = convection;
       preconditioner_iterations  = 0;
       preconditioner_constraints = constrained;

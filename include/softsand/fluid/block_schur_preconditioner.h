@@ -77,6 +77,8 @@ namespace softsand
       /// @p velocity_smoother is the ML smoother of the velocity AMG:
       /// Chebyshev assumes a symmetric positive block; the convective
       /// (Newton/Picard) block of steady flow needs "symmetric Gauss-Seidel".
+      /// @p smoothed_aggregation: ML's smoothed prolongators instead of
+      /// plain aggregates for that AMG.
       BlockSchurPreconditioner(
         const TrilinosWrappers::BlockSparseMatrix &system_matrix,
         const TrilinosWrappers::BlockSparseMatrix &pressure_mass_matrix,
@@ -88,7 +90,8 @@ namespace softsand
         const double                 inner_tolerance = 1e-6,
         const bool                   direct_velocity_solve = false,
         const SolverParameters::SchurInnerSolver inner_solver =
-          SolverParameters::SchurInnerSolver::direct);
+          SolverParameters::SchurInnerSolver::direct,
+        const bool smoothed_aggregation = false);
 
       void
       vmult(BlockVector &dst, const BlockVector &src) const;

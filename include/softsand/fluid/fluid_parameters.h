@@ -124,6 +124,9 @@ namespace softsand
         ilu
       };
       AmgSmoother velocity_amg_smoother = AmgSmoother::automatic;
+      /// Smoothed aggregation (ML's default) instead of plain aggregation
+      /// in the velocity-block AMG: denser coarse levels, slower setup.
+      bool velocity_amg_smoothed_aggregation = false;
       /// Matrix based: a sparse direct solve of the velocity block in the
       /// preconditioner instead of the AMG V-cycle.
       bool direct_velocity_solve = false;
