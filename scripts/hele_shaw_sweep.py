@@ -284,12 +284,13 @@ def main():
         lines.append("# K_end/K_start '-': the transient model's flow starts "
                      "from rest, its first step's K is not the pack's")
     failed = [r['p'] for r in results if 'error' in r]
+    finished = [r['p'] for r in results if 'error' not in r]
     if failed:
         lines.append('# %d of %d runs failed (%s Pa): %s' % (
             len(failed), len(results), ','.join('%g' % p for p in failed),
-            'no critical pressure' if len(failed) == len(results) else
-            'the bracket below uses the others only'))
-    if len(failed) == len(results):
+            'the bracket below uses the others only' if finished else
+            'no critical pressure'))
+    if not finished:
         pass
     elif above is not None and below is not None:
         lines.append('# critical pressure between %g and %g Pa: %.3g Pa '
@@ -297,11 +298,10 @@ def main():
                                            math.sqrt(below * above)))
     elif above is None:
         lines.append('# no pressure fractured: critical pressure above %g Pa'
-                     % max(r['p'] for r in results if 'error' not in r))
+                     % max(finished))
     else:
         lines.append('# every pressure fractured: critical pressure below '
-                     '%g Pa' % min(r['p'] for r in results
-                                   if 'error' not in r))
+                     '%g Pa' % min(finished))
     os.makedirs(args.workdir, exist_ok=True)
     with open(os.path.join(args.workdir, 'summary.txt' if args.summarize
                            else 'sweep.txt'), 'w') as f:
