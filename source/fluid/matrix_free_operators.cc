@@ -173,7 +173,9 @@ namespace softsand
             dof_handler.locally_owned_dofs(),
             dof_handler.get_triangulation().get_communicator());
           // Without the Newton term the components do not couple: a third
-          // of the entries (coarse level of the velocity multigrid).
+          // of the entries (coarse level of the velocity multigrid). Rows
+          // and columns of constrained DoFs (the grains' rigid nodes) keep
+          // only their diagonal.
           const unsigned int           n_components = dof_handler.get_fe().n_components();
           Table<2, DoFTools::Coupling> coupling(n_components, n_components);
           for (unsigned int c = 0; c < n_components; ++c)
@@ -183,7 +185,8 @@ namespace softsand
           DoFTools::make_sparsity_pattern(dof_handler,
                                           coupling,
                                           dsp,
-                                          *constraints);
+                                          *constraints,
+                                          false);
           dsp.compress();
           system_matrix.reinit(dsp);
           MatrixFreeTools::compute_matrix(*this->matrix_free,

@@ -523,8 +523,10 @@ namespace softsand
         velocity_components_coupled ||
         couples_velocity_components(Assembly::steady_stokes);
       // The matrix-free path assembles no global matrix; a matrix-based
-      // solve (transient, convective) allocates it on first assembly.
-      if (use_matrix_free(Assembly::steady_stokes))
+      // solve (transient, convective) allocates it on first assembly, as
+      // do moving grains, whose pattern depends on where they are.
+      pattern_constraints.clear();
+      if (use_matrix_free(Assembly::steady_stokes) || moving_solids)
         {
           preconditioner.reset();
           system_matrix.clear();
@@ -683,21 +685,38 @@ namespace softsand
       TimerOutput::Scope t(timer,
                            cell_callback == nullptr ? "fluid: assemble" :
                                                       "fluid: reactions");
-      if (cell_callback == nullptr &&
-          ((couples_velocity_components(kind) &&
-            !velocity_components_coupled) ||
-           system_matrix.n_block_rows() == 0))
+      if (cell_callback == nullptr)
         {
-          // The first Newton step: the pattern needs the entries between
-          // velocity components; or the first matrix-based assembly of a
-          // matrix-free scene. Its constraints are those of setup_dofs().
-          velocity_components_coupled =
-            velocity_components_coupled || couples_velocity_components(kind);
+          // The pattern leaves out the rows and columns that constraints
+          // fix. Moving grains fix other DoFs at nearly every step (74 %
+          // of the velocity DoFs on the Hele-Shaw scene): their rows are
+          // dropped again whenever the set changes (the preconditioner is
+          // rebuilt then anyway). The first Newton step needs the entries
+          // between velocity components; a matrix-free scene allocates the
+          // matrix at its first matrix-based assembly.
+          IndexSet fixed;
+          bool     fixed_changed = false;
           if (moving_solids)
-            make_constraints(false);
-          reinit_system_matrix();
-          if (moving_solids)
-            make_constraints();
+            {
+              fixed = owned_constrained_dofs();
+              fixed_changed =
+                Utilities::MPI::min((fixed.size() ==
+                                       pattern_constraints.size() &&
+                                     fixed == pattern_constraints) ?
+                                      1 :
+                                      0,
+                                    mpi_communicator) == 0;
+            }
+          if (fixed_changed || system_matrix.n_block_rows() == 0 ||
+              (couples_velocity_components(kind) &&
+               !velocity_components_coupled))
+            {
+              velocity_components_coupled =
+                velocity_components_coupled ||
+                couples_velocity_components(kind);
+              reinit_system_matrix();
+              pattern_constraints = fixed;
+            }
         }
       if (cell_callback == nullptr)
         {
@@ -1176,6 +1195,19 @@ namespace softsand
 
     template <int dim>
     IndexSet
+    PenalizedNavierStokes<dim>::owned_constrained_dofs() const
+    {
+      IndexSet constrained(dof_handler.n_dofs());
+      for (const auto i : dof_handler.locally_owned_dofs())
+        if (constraints.is_constrained(i))
+          constrained.add_index(i);
+      constrained.compress();
+      return constrained;
+    }
+
+
+    template <int dim>
+    IndexSet
     PenalizedNavierStokes<dim>::constrained_velocity_dofs() const
     {
       IndexSet constrained(owned_partitioning[0].size());
@@ -1219,8 +1251,8 @@ namespace softsand
     {
       TimerOutput::Scope t(timer, "fluid: preconditioner setup");
       preconditioner.reset();
-      // How much of the system the grains fix (their rows stay in a
-      // moving-solid sparsity): the memory that removing them would save.
+      // How much of the system the grains fix (their rows keep only a
+      // diagonal in the pattern).
       pcout << "      preconditioner built: "
             << Utilities::MPI::sum(constrained.n_elements(), mpi_communicator)
             << " of "

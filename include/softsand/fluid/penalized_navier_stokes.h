@@ -376,6 +376,10 @@ namespace softsand
       /// nodes, walls, hanging nodes).
       IndexSet
       constrained_velocity_dofs() const;
+
+      /// Locally owned DoFs (velocity and pressure) that the constraints fix.
+      IndexSet
+      owned_constrained_dofs() const;
       /// Rigid nodes, matrix-based solves: smooth the pressure of cells
       /// whose velocity nodes are (nearly) all imposed (see
       /// FluidParameters) rather than pin it. The matrix-free path has the
@@ -529,6 +533,7 @@ namespace softsand
       /// constrained_velocity_dofs() when it was built: rigid nodes that
       /// grains entered or left change the matrix it approximates.
       IndexSet                                  preconditioner_constraints;
+      IndexSet                                  pattern_constraints;
       /// AMG sweeps of the velocity block in use: 'velocity amg sweeps',
       /// doubled (at most twice) for the rest of the run each time a solve
       /// with a new preconditioner fails (solve_linear()).
