@@ -156,12 +156,27 @@ namespace softsand
       if (inflation > 0)
         box.extend(inflation);
       grains_near_box(box, near);
+      return containing_grain(x, inflation, near);
+    }
+
+
+    template <int dim>
+    int
+    GrainLocator<dim>::containing_grain(
+      const Point<dim>                &x,
+      const double                     inflation,
+      const std::vector<unsigned int> &candidates) const
+    {
       int    best       = -1;
       double best_depth = 0;
-      for (const unsigned int i : near)
+      for (const unsigned int i : candidates)
         {
           const auto  &g     = grain_list[i];
-          const double depth = g.radius + inflation - x.distance(g.center);
+          const double reach = g.radius + inflation;
+          const double d2    = x.distance_square(g.center);
+          if (d2 > reach * reach)
+            continue; // depth < 0
+          const double depth = reach - std::sqrt(d2);
           if (depth > best_depth || (best < 0 && depth >= 0))
             {
               best       = i;
@@ -178,6 +193,16 @@ namespace softsand
                                     int                    &grain_index) const
     {
       thread_local std::vector<unsigned int> near;
+      return classify_box(box, grain_index, near);
+    }
+
+
+    template <int dim>
+    typename GrainLocator<dim>::BoxRelation
+    GrainLocator<dim>::classify_box(const BoundingBox<dim>    &box,
+                                    int                       &grain_index,
+                                    std::vector<unsigned int> &near) const
+    {
       grains_near_box(box, near);
       grain_index      = -1;
       bool cut         = false;

@@ -62,7 +62,9 @@ namespace softsand
       int                                                    &dominant) const
     {
       const BoundingBox<dim> box = cell.bounding_box();
-      const auto relation = grain_locator.classify_box(box, dominant);
+      // The grains near the cell, searched once for all its samples.
+      thread_local std::vector<unsigned int> near;
+      const auto relation = grain_locator.classify_box(box, dominant, near);
       if (relation == GrainLocator<dim>::BoxRelation::outside_all)
         return 0;
       if (relation == GrainLocator<dim>::BoxRelation::inside_one)
@@ -80,7 +82,7 @@ namespace softsand
           Point<dim> x;
           for (unsigned int d = 0; d < dim; ++d)
             x[d] = lo[d] + (i[d] + 0.5) / n * (hi[d] - lo[d]);
-          const int g = grain_locator.containing_grain(x);
+          const int g = grain_locator.containing_grain(x, 0., near);
           if (g >= 0)
             {
               ++covered;
@@ -109,8 +111,6 @@ namespace softsand
       // that the grain velocity is defined there.
       if (dominant < 0)
         {
-          std::vector<unsigned int> near;
-          grain_locator.grains_near_box(box, near);
           double best = std::numeric_limits<double>::max();
           for (const unsigned int k : near)
             {
@@ -196,12 +196,24 @@ namespace softsand
       BoundingBox<dim> box      = cell.bounding_box();
       if (inflation > 0)
         box.extend(inflation);
-      if (grain_locator.classify_box(box, dominant) ==
+      // The grains near the cell, searched once: the points lie in it.
+      thread_local std::vector<unsigned int> near;
+      if (grain_locator.classify_box(box, dominant, near) ==
           GrainLocator<dim>::BoxRelation::outside_all)
         return;
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          const int g = grain_locator.containing_grain(points[q], inflation);
+          // An FESystem lists each support point once per component, one
+          // after the other.
+          if (q > 0 && points[q] == points[q - 1])
+            {
+              void_fraction[q]  = void_fraction[q - 1];
+              solid_index[q]    = solid_index[q - 1];
+              solid_velocity[q] = solid_velocity[q - 1];
+              continue;
+            }
+          const int g =
+            grain_locator.containing_grain(points[q], inflation, near);
           if (g >= 0)
             {
               void_fraction[q]  = 0;

@@ -42,10 +42,24 @@ namespace softsand
       int
       containing_grain(const Point<dim> &x, const double inflation) const;
 
+      /// containing_grain(x, inflation) among @p candidates only: the
+      /// grains_near_box() of a box that holds @p x grown by @p inflation
+      /// (one search per cell instead of one per point).
+      int
+      containing_grain(const Point<dim>                &x,
+                       const double                     inflation,
+                       const std::vector<unsigned int> &candidates) const;
+
       /// Whether the box lies outside all grains, wholly inside one grain
       /// (then @p grain_index is set), or is cut by a grain surface.
       BoxRelation
       classify_box(const BoundingBox<dim> &box, int &grain_index) const;
+
+      /// As above, and @p near holds the grains_near_box() of @p box.
+      BoxRelation
+      classify_box(const BoundingBox<dim>    &box,
+                   int                       &grain_index,
+                   std::vector<unsigned int> &near) const;
 
       /// Indices of grains whose bounding box meets @p box.
       void
