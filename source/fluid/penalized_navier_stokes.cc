@@ -434,7 +434,7 @@ namespace softsand
       const DoFHandler<dim>                  &dof,
       AffineConstraints<double>              &constraints,
       const double                            inflation,
-      std::map<types::global_dof_index, int> *grain_of_dof) const
+      std::unordered_map<types::global_dof_index, int> *grain_of_dof) const
     {
       // Theta -> infinity: nodes inside a grain move with it (rigid nodes:
       // every node inside; penalization: the nodes of cells wholly inside

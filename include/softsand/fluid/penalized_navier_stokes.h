@@ -29,6 +29,7 @@
 
 #include <functional>
 #include <map>
+#include <unordered_map>
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -282,7 +283,7 @@ namespace softsand
         const DoFHandler<dim>                  &dof,
         AffineConstraints<double>              &constraints,
         const double                            inflation,
-        std::map<types::global_dof_index, int> *grain_of_dof) const;
+        std::unordered_map<types::global_dof_index, int> *grain_of_dof) const;
       /// Distance by which the rigid-node model grows the grains (m).
       double
       rigid_node_inflation() const;
@@ -571,7 +572,7 @@ namespace softsand
       /// Rigid-node model: velocity dof -> grain whose rigid velocity it is
       /// constrained to, and the reactions (grain, node, force) of the
       /// last solve.
-      std::map<types::global_dof_index, int> rigid_dof_grain;
+      std::unordered_map<types::global_dof_index, int> rigid_dof_grain;
       std::map<types::global_dof_index,
                std::vector<std::pair<types::global_dof_index, double>>>
         hanging_rigid_parents;
