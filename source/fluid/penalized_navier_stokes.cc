@@ -806,11 +806,26 @@ namespace softsand
       const bool first_order = (bdf_order == 1);
       const bool smooth      = smooth_solid_pressure();
 
+      // The rows a callback reads (all without a filter), and those of
+      // the scalar velocity block.
+      std::vector<bool> rows(dofs_per_cell, true);
+      std::vector<bool> scalar_rows(n_scalar, true);
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           {
-            if (cell_filter != nullptr && !(*cell_filter)(cell))
-              continue;
+            if (cell_filter != nullptr)
+              {
+                std::fill(rows.begin(), rows.end(), true);
+                if (!(*cell_filter)(cell, rows))
+                  continue;
+                for (unsigned int a = 0; a < n_scalar; ++a)
+                  {
+                    scalar_rows[a] = false;
+                    for (unsigned int c = 0; c < dim; ++c)
+                      scalar_rows[a] =
+                        scalar_rows[a] || rows[velocity_dof[c][a]];
+                  }
+              }
             fe_values.reinit(cell);
             local_matrix  = 0;
             local_mass    = 0;
@@ -1004,6 +1019,8 @@ namespace softsand
                       }
                     for (unsigned int a = 0; a < n_scalar; ++a)
                       {
+                        if (!scalar_rows[a])
+                          continue;
                         const double phi_a    = scalar_value[a];
                         const double advect_a = convection ? rho * phi_a : 0.;
                         double      *row      = &scalar_block(a, 0);
@@ -1019,6 +1036,8 @@ namespace softsand
                   }
                 for (unsigned int i = 0; i < dofs_per_cell; ++i)
                   {
+                    if (!rows[i])
+                      continue;
                     const unsigned int ci  = component[i];
                     const double       phi = shape_value[i];
                     if (ci == dim) // pressure test function
@@ -1080,13 +1099,15 @@ namespace softsand
             if (one_scalar_block && !reservoir)
               for (unsigned int c = 0; c < dim; ++c)
                 for (unsigned int a = 0; a < n_scalar; ++a)
-                  for (unsigned int b = 0; b < n_scalar; ++b)
-                    local_matrix(velocity_dof[c][a], velocity_dof[c][b]) +=
-                      scalar_block(a, b);
+                  if (rows[velocity_dof[c][a]])
+                    for (unsigned int b = 0; b < n_scalar; ++b)
+                      local_matrix(velocity_dof[c][a], velocity_dof[c][b]) +=
+                        scalar_block(a, b);
             for (const unsigned int i : dofs_of_component[dim])
-              for (unsigned int cj = 0; cj < dim; ++cj)
-                for (const unsigned int j : dofs_of_component[cj])
-                  local_matrix(i, j) = local_matrix(j, i);
+              if (rows[i])
+                for (unsigned int cj = 0; cj < dim; ++cj)
+                  for (const unsigned int j : dofs_of_component[cj])
+                    local_matrix(i, j) = local_matrix(j, i);
 
             // Convection through a traction surface (pressure faces, the
             // surface of a pressure region): the directional do-nothing
@@ -1630,11 +1651,32 @@ namespace softsand
 
       // assemble() asks the filter about a cell right before it hands that
       // cell to the callback: the filter's two answers are kept for it.
+      // Only the rows read below are computed: rigid and hanging-rigid
+      // velocity nodes, velocity nodes on constrained faces.
       bool cell_has_rigid_nodes = false, cell_on_wall = false;
-      const CellFilter either = [&](const auto &cell) {
+      const CellFilter either = [&](const auto &cell, std::vector<bool> &rows) {
         cell_has_rigid_nodes = has_rigid_nodes(cell);
         cell_on_wall         = touches_constrained_face(cell);
-        return cell_has_rigid_nodes || cell_on_wall;
+        if (!cell_has_rigid_nodes && !cell_on_wall)
+          return false;
+        std::fill(rows.begin(), rows.end(), false);
+        if (cell_has_rigid_nodes) // cell_dofs: filled by has_rigid_nodes()
+          for (unsigned int k = 0; k < rows.size(); ++k)
+            rows[k] = fe.system_to_component_index(k).first < dim &&
+                      (rigid_dof_grain.count(cell_dofs[k]) ||
+                       hanging_rigid_parents.count(cell_dofs[k]));
+        if (cell_on_wall)
+          for (const auto f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                boundary_conditions.imposes_velocity(
+                  cell->face(f)->boundary_id()))
+              for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
+                {
+                  const unsigned int i = fe.face_to_cell_index(k, f);
+                  if (fe.system_to_component_index(i).first < dim)
+                    rows[i] = true;
+                }
+        return true;
       };
       const CellCallback both =
         [&](const typename DoFHandler<dim>::active_cell_iterator &cell,

@@ -318,9 +318,12 @@ namespace softsand
                            const Vector<double> &,
                            const std::vector<types::global_dof_index> &)>;
 
-      /// Which cells a callback assembly visits.
+      /// Which cells a callback assembly visits, and in @p rows (one per
+      /// cell DoF, all true on entry) which rows of the cell's system the
+      /// callback reads: the others are left zero, not computed.
       using CellFilter = std::function<bool(
-        const typename DoFHandler<dim>::active_cell_iterator &)>;
+        const typename DoFHandler<dim>::active_cell_iterator &,
+        std::vector<bool> &rows)>;
 
       /// Assemble the system; with @p cell_callback, hand the local system
       /// of each cell that @p cell_filter accepts to it instead (for
