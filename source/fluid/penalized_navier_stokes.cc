@@ -1231,12 +1231,8 @@ namespace softsand
     IndexSet
     PenalizedNavierStokes<dim>::constrained_velocity_dofs() const
     {
-      IndexSet constrained(owned_partitioning[0].size());
-      for (const auto i : owned_partitioning[0])
-        if (constraints.is_constrained(i))
-          constrained.add_index(i);
-      constrained.compress();
-      return constrained;
+      // The velocity block comes first in the DoF numbering.
+      return owned_constrained_dofs().get_view(0, owned_partitioning[0].size());
     }
 
 
@@ -1606,78 +1602,53 @@ namespace softsand
                   add(k, rigid_dof_grain.at(parent), weight);
             }
         };
-      // Reactions live on rigid nodes and on hanging nodes of rigid
-      // parents.
+      // assemble() asks the filter about a cell right before it hands that
+      // cell to the callback: its answers (cell_has_rigid_nodes,
+      // cell_on_wall, on_face) are kept for it. Only the rows the callback
+      // reads are computed: rigid nodes and hanging nodes of rigid parents
+      // (where reactions live), velocity nodes on constrained faces.
       std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-      const auto has_rigid_nodes = [&](const auto &cell) {
-        if (!rigid)
-          return false;
-        cell->get_dof_indices(cell_dofs);
-        for (const auto i : cell_dofs)
-          if (rigid_dof_grain.count(i) || hanging_rigid_parents.count(i))
-            return true;
-        return false;
-      };
-
       std::vector<bool> on_face(fe.n_dofs_per_cell());
-      const auto touches_constrained_face = [&](const auto &cell) {
+      bool cell_has_rigid_nodes = false, cell_on_wall = false;
+      const CellFilter either = [&](const auto &cell, std::vector<bool> &rows) {
+        std::fill(rows.begin(), rows.end(), false);
+        cell_has_rigid_nodes = false;
+        if (rigid)
+          {
+            cell->get_dof_indices(cell_dofs);
+            for (unsigned int k = 0; k < rows.size(); ++k)
+              if (rigid_dof_grain.count(cell_dofs[k]) ||
+                  hanging_rigid_parents.count(cell_dofs[k]))
+                rows[k] = cell_has_rigid_nodes = true;
+          }
+        std::fill(on_face.begin(), on_face.end(), false);
+        cell_on_wall = false;
         for (const auto f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
               boundary_conditions.imposes_velocity(cell->face(f)->boundary_id()))
-            return true;
-        return false;
-      };
-      const auto add_boundary_reaction =
-        [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
-            const FullMatrix<double>                             &matrix,
-            const Vector<double>                                 &rhs) {
-          std::fill(on_face.begin(), on_face.end(), false);
-          for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                boundary_conditions.imposes_velocity(cell->face(f)->boundary_id()))
-              for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
-                on_face[fe.face_to_cell_index(k, f)] = true;
-          for (unsigned int k = 0; k < on_face.size(); ++k)
             {
-              const unsigned int c = fe.system_to_component_index(k).first;
-              if (!on_face[k] || c == dim)
-                continue;
-              double r = rhs(k);
-              for (unsigned int j = 0; j < on_face.size(); ++j)
-                r -= matrix(k, j) * local_solution(j);
-              force[c] += r;
-            }
-        };
-
-      // assemble() asks the filter about a cell right before it hands that
-      // cell to the callback: the filter's two answers are kept for it.
-      // Only the rows read below are computed: rigid and hanging-rigid
-      // velocity nodes, velocity nodes on constrained faces.
-      bool cell_has_rigid_nodes = false, cell_on_wall = false;
-      const CellFilter either = [&](const auto &cell, std::vector<bool> &rows) {
-        cell_has_rigid_nodes = has_rigid_nodes(cell);
-        cell_on_wall         = touches_constrained_face(cell);
-        if (!cell_has_rigid_nodes && !cell_on_wall)
-          return false;
-        std::fill(rows.begin(), rows.end(), false);
-        if (cell_has_rigid_nodes) // cell_dofs: filled by has_rigid_nodes()
-          for (unsigned int k = 0; k < rows.size(); ++k)
-            rows[k] = fe.system_to_component_index(k).first < dim &&
-                      (rigid_dof_grain.count(cell_dofs[k]) ||
-                       hanging_rigid_parents.count(cell_dofs[k]));
-        if (cell_on_wall)
-          for (const auto f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                boundary_conditions.imposes_velocity(
-                  cell->face(f)->boundary_id()))
+              cell_on_wall = true;
               for (unsigned int k = 0; k < fe.n_dofs_per_face(); ++k)
                 {
                   const unsigned int i = fe.face_to_cell_index(k, f);
                   if (fe.system_to_component_index(i).first < dim)
-                    rows[i] = true;
+                    on_face[i] = rows[i] = true;
                 }
-        return true;
+            }
+        return cell_has_rigid_nodes || cell_on_wall;
       };
+      // The residual summed over the velocity rows on constrained faces.
+      const auto add_boundary_reaction =
+        [&](const FullMatrix<double> &matrix, const Vector<double> &rhs) {
+          for (unsigned int k = 0; k < on_face.size(); ++k)
+            if (on_face[k])
+              {
+                double r = rhs(k);
+                for (unsigned int j = 0; j < on_face.size(); ++j)
+                  r -= matrix(k, j) * local_solution(j);
+                force[fe.system_to_component_index(k).first] += r;
+              }
+        };
       const CellCallback both =
         [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
             const FullMatrix<double>                             &matrix,
@@ -1687,7 +1658,7 @@ namespace softsand
           if (cell_has_rigid_nodes)
             add_rigid_reactions(cell, matrix, rhs, dofs);
           if (cell_on_wall)
-            add_boundary_reaction(cell, matrix, rhs);
+            add_boundary_reaction(matrix, rhs);
         };
       assemble(kind, dt, bdf_order, &both, &either);
 
