@@ -13,7 +13,8 @@ benchmarks/liggghts/pour.in from it, each on 1 and 2 MPI ranks, and reports
     own loop timer; LIGGGHTS: its "Loop time"), and the ratio.
 
 Usage: scripts/benchmark_dem_vs_liggghts.py [--steps N] [--ranks 1 2]
-Needs build/softsand and the Debian package liggghts.
+Needs build/softsand and the Debian package liggghts (an optional benchmark
+dependency: apt-get install liggghts).
 """
 import argparse
 import math
@@ -144,6 +145,11 @@ def main():
     parser.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
     parser.add_argument("--workdir", default=os.path.join(ROOT, "output/benchmark_liggghts"))
     args = parser.parse_args()
+    if not os.path.exists(os.path.join(ROOT, "build/softsand")):
+        sys.exit("build/softsand not found: build softsand first (bash scripts/setup.sh)")
+    if shutil.which("liggghts") is None:
+        sys.exit("liggghts not found: this benchmark needs the Debian package "
+                 "(apt-get install liggghts)")
     os.makedirs(args.workdir, exist_ok=True)
     env_note = "OMPI_ALLOW_RUN_AS_ROOT" in os.environ
     rows = []
