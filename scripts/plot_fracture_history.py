@@ -11,7 +11,8 @@ of each statistics row minus the run's first, in mm^2, against t in ms.
 A run is a coupled run's output directory whose statistics have the
 `fracture_area` column (postprocessing/fracture area/enabled = true); an
 unfinished run plots up to its last row. --table also prints the growth of
-every run at the times of the first run's rows that all runs reached.
+every run at the times of the first run's rows that all runs reached ('-'
+before a run's first row).
 Needs matplotlib (/usr/bin/python3 on this machine).
 """
 import argparse
@@ -70,8 +71,10 @@ def main():
         print('|---|' + '---|' * len(labels))
         for t, _ in histories[0]:
             if t <= end * (1 + 1e-9):
+                # '-': a run whose first row comes after t.
                 print('| %.3f | ' % t + ' | '.join(
-                    '%.3f' % growth_at(h, t) for h in histories) + ' |')
+                    '-' if g is None else '%.3f' % g
+                    for g in (growth_at(h, t) for h in histories)) + ' |')
 
     if args.out:
         import matplotlib
