@@ -361,14 +361,6 @@ namespace softsand
           if (!smooth_solid_pressure())
             pin_undetermined_solid_pressures();
         }
-      // Each rank decides the pressure regions' and the solids' lines from
-      // the cells it sees; a coarse region cell's face nodes that are the
-      // parents of another rank's hanging nodes were fixed on one rank and
-      // free on the other, and FGMRES returned velocities of 1e5 m/s in the
-      // inlet (small Hele-Shaw cell, 4 cells per mean d, 2 ranks).
-      constraints.make_consistent_in_parallel(dof_handler.locally_owned_dofs(),
-                                              relevant,
-                                              mpi_communicator);
       constraints.close();
     }
 

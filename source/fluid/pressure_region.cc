@@ -1,5 +1,7 @@
 #include <deal.II/dofs/dof_tools.h>
 
+#include <deal.II/lac/trilinos_vector.h>
+
 #include <softsand/base/parameter_tools.h>
 #include <softsand/fluid/pressure_region.h>
 
@@ -95,9 +97,15 @@ namespace softsand
       if (!inlet.enabled() && !perimeter.enabled())
         return;
       const FiniteElement<dim> &fe = dof_handler.get_fe();
-      // Only locally active dofs: all their cells are owned or ghost, so
-      // every rank sees whether a non-region cell shares them.
-      const IndexSet active = DoFTools::extract_locally_active_dofs(dof_handler);
+      // The owner of a DoF decides (its cells are all owned or ghost there)
+      // and the other ranks that see it take the owner's word: a rank that
+      // knows a DoF only from a ghost cell, e.g. the coarse parent of its
+      // own hanging nodes, cannot tell whether a cell it does not see
+      // shares it, and constraints that differ between ranks gave
+      // velocities of 1e5 m/s in the inlet (test inlet_hanging_nodes).
+      const IndexSet &owned = dof_handler.locally_owned_dofs();
+      const IndexSet  relevant =
+        DoFTools::extract_locally_relevant_dofs(dof_handler);
       std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
       std::map<types::global_dof_index, double> region_pressure;
       std::set<types::global_dof_index>         region_velocity;
@@ -117,8 +125,6 @@ namespace softsand
                 else
                   region_velocity.insert(dof_indices[k]);
             }
-      if (region_pressure.empty() && region_velocity.empty())
-        return;
       // Velocity nodes that a fluid cell shares carry the traction
       // condition; the others are not part of the flow.
       for (const auto &cell : dof_handler.active_cell_iterators())
@@ -128,17 +134,40 @@ namespace softsand
             for (const auto i : dof_indices)
               region_velocity.erase(i);
           }
+
+      // Fixed velocity 1; fixed pressure 1 with its value.
+      const MPI_Comm comm = dof_handler.get_communicator();
+      TrilinosWrappers::MPI::Vector fixed_velocity(owned, comm),
+        fixed_pressure(owned, comm), pressure_value(owned, comm);
       for (const auto &[i, p] : region_pressure)
-        if (active.is_element(i) && !constraints.is_constrained(i) &&
-            constraints.can_store_line(i))
+        if (owned.is_element(i))
           {
-            constraints.add_line(i);
-            constraints.set_inhomogeneity(i, p);
+            fixed_pressure[i] = 1;
+            pressure_value[i] = p;
           }
       for (const auto i : region_velocity)
-        if (active.is_element(i) && !constraints.is_constrained(i) &&
-            constraints.can_store_line(i))
-          constraints.add_line(i);
+        if (owned.is_element(i))
+          fixed_velocity[i] = 1;
+      fixed_velocity.compress(VectorOperation::insert);
+      fixed_pressure.compress(VectorOperation::insert);
+      pressure_value.compress(VectorOperation::insert);
+      TrilinosWrappers::MPI::Vector seen_velocity(owned, relevant, comm),
+        seen_pressure(owned, relevant, comm), seen_value(owned, relevant, comm);
+      seen_velocity = fixed_velocity;
+      seen_pressure = fixed_pressure;
+      seen_value    = pressure_value;
+
+      for (const auto i : relevant)
+        if (!constraints.is_constrained(i) && constraints.can_store_line(i))
+          {
+            if (seen_pressure(i) > 0.5)
+              {
+                constraints.add_line(i);
+                constraints.set_inhomogeneity(i, seen_value(i));
+              }
+            else if (seen_velocity(i) > 0.5)
+              constraints.add_line(i);
+          }
     }
 
     template class PressureRegion<2>;
