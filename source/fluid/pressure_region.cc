@@ -135,37 +135,35 @@ namespace softsand
               region_velocity.erase(i);
           }
 
-      // Fixed velocity 1; fixed pressure 1 with its value.
+      // What the owner fixed: 1 a velocity, 2 a pressure (whose value
+      // travels in a second vector). One DoF is either, never both.
       const MPI_Comm comm = dof_handler.get_communicator();
-      TrilinosWrappers::MPI::Vector fixed_velocity(owned, comm),
-        fixed_pressure(owned, comm), pressure_value(owned, comm);
+      TrilinosWrappers::MPI::Vector fixed(owned, comm), value(owned, comm);
       for (const auto &[i, p] : region_pressure)
         if (owned.is_element(i))
           {
-            fixed_pressure[i] = 1;
-            pressure_value[i] = p;
+            fixed[i] = 2;
+            value[i] = p;
           }
       for (const auto i : region_velocity)
         if (owned.is_element(i))
-          fixed_velocity[i] = 1;
-      fixed_velocity.compress(VectorOperation::insert);
-      fixed_pressure.compress(VectorOperation::insert);
-      pressure_value.compress(VectorOperation::insert);
-      TrilinosWrappers::MPI::Vector seen_velocity(owned, relevant, comm),
-        seen_pressure(owned, relevant, comm), seen_value(owned, relevant, comm);
-      seen_velocity = fixed_velocity;
-      seen_pressure = fixed_pressure;
-      seen_value    = pressure_value;
+          fixed[i] = 1;
+      fixed.compress(VectorOperation::insert);
+      value.compress(VectorOperation::insert);
+      TrilinosWrappers::MPI::Vector seen_fixed(owned, relevant, comm),
+        seen_value(owned, relevant, comm);
+      seen_fixed = fixed;
+      seen_value = value;
 
       for (const auto i : relevant)
         if (!constraints.is_constrained(i) && constraints.can_store_line(i))
           {
-            if (seen_pressure(i) > 0.5)
+            if (seen_fixed(i) > 1.5)
               {
                 constraints.add_line(i);
                 constraints.set_inhomogeneity(i, seen_value(i));
               }
-            else if (seen_velocity(i) > 0.5)
+            else if (seen_fixed(i) > 0.5)
               constraints.add_line(i);
           }
     }
