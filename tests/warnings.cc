@@ -5,7 +5,8 @@
 // creeping-flow model at pore Reynolds numbers above 1, a fluid solve
 // retried with a stronger velocity preconditioner, freed contact cells
 // that hand most of a pack to the fluid, grains overlapping beyond what
-// the contact law (and a grain file) accepts. Settings
+// the contact law (and a grain file) accepts, the paper's penalization on
+// a pack at a penalty coupling number the coupled step is unstable at. Settings
 // a scene would ignore (restart, checkpoints outside coupled scenes) stop
 // it instead.
 
@@ -166,6 +167,30 @@ main(int argc, char **argv)
               << ", warned: "
               << (warned("the freed contact cells") ? "yes" : "no")
               << std::endl;
+    }
+
+  // 7b. The paper's penalization on the same pack and step: grains that
+  // share a cell are held together by the penalty. The penalty coupling
+  // number Theta (rho_f / rho_s) h^3 / V (smallest grain, finest cell) is
+  // 0.3 Theta here: warned at Theta = 1e6, not at 1e2.
+  for (const double theta : {1e2, 1e6})
+    {
+      run_scene<3>(
+        scene_text("hele_shaw_small") +
+        "subsection simulation control\n set max time steps = 1\n"
+        " set time step = 1e-4\nend\n"
+        "subsection coupling\n set fluid model = transient\n"
+        " set void fraction model = cell average\nend\n"
+        "subsection fluid\n set solid model = penalization\n"
+        " set theta = " + std::to_string(theta) + "\nend\n"
+        "subsection grains\n set file = " + std::string(SOURCE_DIR) +
+        "/../parameters/packs/hele_shaw_small.txt\nend\n");
+      std::string number = "none";
+      for (const auto &w : base::warnings_given())
+        if (const auto k = w.find("h^3 / V = "); k != std::string::npos)
+          number = w.substr(k + 10, w.find(" (finest") - k - 10);
+      deallog << "small Hele-Shaw, penalization, theta = " << theta
+              << ": penalty coupling number warned: " << number << std::endl;
     }
 
   // 8. Settings a steady scene would ignore (it has no time loop to

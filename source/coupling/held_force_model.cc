@@ -11,6 +11,18 @@ namespace softsand
 {
   namespace coupling
   {
+    double
+    penalty_coupling_number(const double theta,
+                            const double fluid_density,
+                            const double grain_density,
+                            const double cell_edge,
+                            const double grain_volume)
+    {
+      return theta * fluid_density / grain_density * cell_edge * cell_edge *
+             cell_edge / grain_volume;
+    }
+
+
     HeldForceModel::HeldForceModel(const Settings &settings)
       : settings(settings)
     {}

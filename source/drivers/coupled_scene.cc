@@ -176,6 +176,7 @@ namespace softsand
                      g.diameter() * g.diameter() / (18 * p.fluid.viscosity));
       warn_about_fluid_model(p, !fluid.grains().empty(), mpi_communicator);
       warn_about_response_time();
+      warn_about_penalty_coupling();
       if (p.fracture_area.enabled && p.fracture_area.stops_set())
         fracture_development =
           std::make_unique<postprocess::FractureDevelopment>(
@@ -206,6 +207,43 @@ namespace softsand
                 "free grains overshoot their terminal velocity (a free "
                 "sphere at 5.7 response times ended at 1.5 times the stream "
                 "velocity). Lower the time step below the response time.";
+      base::warn(text.str(), mpi_communicator);
+    }
+
+
+    void
+    CoupledScene::warn_about_penalty_coupling() const
+    {
+      const auto &p = parameters;
+      if (p.fluid.solid_model !=
+            fluid::FluidParameters::SolidModel::penalization ||
+          fluid.grains().size() < 2)
+        return;
+      double smallest = std::numeric_limits<double>::max();
+      for (const auto &g : fluid.grains())
+        smallest = std::min(smallest, g.measure());
+      const double n = coupling::penalty_coupling_number(p.fluid.theta,
+                                                         p.fluid.density,
+                                                         p.dem.material.density,
+                                                         finest_cell,
+                                                         smallest);
+      if (!(n > coupling::max_stable_penalty_coupling))
+        return;
+      std::ostringstream text;
+      text << std::setprecision(3) << "fluid/theta = " << p.fluid.theta
+           << " with fluid/solid model = penalization: grains that share a "
+              "cell (or touch a wall) are held together by the penalty, "
+              "and the penalty coupling number Theta (rho_f / rho_s) h^3 / V "
+              "= "
+           << n << " (finest cell h = " << finest_cell
+           << " m, smallest grain V = " << smallest
+           << " m^3) is above " << coupling::max_stable_penalty_coupling
+           << ": the coupled step is likely unstable (grains at tens of m/s "
+              "within a few steps; on the small Hele-Shaw scene stable at 36, "
+              "not at 362, whatever the time step). Lower fluid/theta below "
+           << p.fluid.theta * coupling::max_stable_penalty_coupling / n
+           << " (the grains then leak: doc/hele_shaw.md), refine the mesh, or "
+              "use fluid/solid model = rigid nodes.";
       base::warn(text.str(), mpi_communicator);
     }
 

@@ -29,6 +29,28 @@ namespace softsand
     };
 
     /**
+     * The penalty coupling number N = Theta (rho_f / rho_s) h^3 / V of the
+     * penalization: a cell of edge h shared by two grains (or by a grain and
+     * a wall) cannot follow both rigid velocities, and the penalty there
+     * holds the two together with about rho Theta h^3 (u_A - u_B) / dt.
+     * Over one coupling step that changes a grain of volume V by N times the
+     * velocity difference, whatever dt; a fluid force held explicitly over
+     * the step then grows from step to step where N is large
+     * (doc/hele_shaw.md, "The injection with the paper's model").
+     */
+    double
+    penalty_coupling_number(const double theta,
+                            const double fluid_density,
+                            const double grain_density,
+                            const double cell_edge,
+                            const double grain_volume);
+
+    /// Above this penalty coupling number the coupled step was measured
+    /// unstable: the small Hele-Shaw scene at 4 cells per mean diameter ran
+    /// at N = 36 (Theta = 1e3) and blew up at N = 362 (Theta = 1e4).
+    constexpr double max_stable_penalty_coupling = 100;
+
+    /**
      * The fluid force seen by the DEM between two fluid solves, linearized
      * in the grain's velocity, F(v) = F_0 - k (v - v_0) (doc/architecture.md,
      * "Held fluid force"). The resistance k is Stokes' 3 pi mu d (rotation:

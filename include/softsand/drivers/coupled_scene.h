@@ -84,6 +84,10 @@ namespace softsand
       /// Warns when the coupling step exceeds the grains' response time.
       void
       warn_about_response_time() const;
+      /// Penalization with more than one grain: warn where the penalty
+      /// coupling number exceeds what the coupled step was measured stable at.
+      void
+      warn_about_penalty_coupling() const;
       void
       report_progress(const bool last, const Timer &loop_clock);
       void
