@@ -38,9 +38,9 @@ namespace softsand
         Patterns::Double(0),
         "Transient fluid: halve the coupling step (simulation control/time "
         "step, halved up to 10 times) while the largest cell Courant number "
-        "|u| dt / h of the last fluid solution exceeds this, and take it "
-        "back up where the longer step, whose first step is BDF1, stays "
-        "within 1/1.5 of this (dimensionless; 0: fixed steps). The "
+        "|u| dt / h of the last fluid solution exceeds this, and double it "
+        "back where it stays within this, never in two steps running "
+        "(variable-step BDF2; dimensionless; 0: fixed steps). The "
         "velocity V-cycle of the Oseen step fails at Courant numbers of a "
         "few (doc/solver_study.md). With fluid/solid model = penalization "
         "the step is also the penalty's time scale: leave it 0 there.");

@@ -640,10 +640,11 @@ namespace softsand
           face_values[velocities].get_function_values(old_solution, w);
           if (bdf_order != 1)
             {
+              const BDFCoefficients c = bdf_coefficients(2, bdf_step_ratio);
               face_values[velocities].get_function_values(older_solution,
                                                           w_older);
               for (unsigned int q = 0; q < n_q; ++q)
-                w[q] = 2. * w[q] - w_older[q];
+                w[q] = c.e1 * w[q] + c.e2 * w_older[q];
             }
         }
       else
@@ -803,8 +804,10 @@ namespace softsand
       std::vector<int>            solid_index(n_q, -1);
       Vector<double>              force_value(dim);
 
-      const bool first_order = (bdf_order == 1);
-      const bool smooth      = smooth_solid_pressure();
+      const bool            first_order = (bdf_order == 1);
+      const BDFCoefficients bdf =
+        bdf_coefficients(first_order ? 1 : 2, bdf_step_ratio);
+      const bool smooth = smooth_solid_pressure();
 
       // The rows a callback reads (all without a filter), and those of
       // the scalar velocity block.
@@ -943,11 +946,12 @@ namespace softsand
                       {
                         const Tensor<1, dim> u_tilde_older =
                           vf * u_older[q] + solid * solid_velocity[q];
-                        beta = 1.5 * rho_star / dt;
-                        beta_rhs =
-                          rho_star / dt * (2. * u_tilde_old - 0.5 * u_tilde_older);
-                        w     = 2. * u_old[q] - u_older[q];
-                        div_w = 2. * trace(grad_u_old[q]) - trace(grad_u_older[q]);
+                        beta     = bdf.a0 * rho_star / dt;
+                        beta_rhs = -rho_star / dt *
+                                   (bdf.a1 * u_tilde_old + bdf.a2 * u_tilde_older);
+                        w     = bdf.e1 * u_old[q] + bdf.e2 * u_older[q];
+                        div_w = bdf.e1 * trace(grad_u_old[q]) +
+                                bdf.e2 * trace(grad_u_older[q]);
                       }
                     convection = true;
                   }
@@ -1821,12 +1825,14 @@ namespace softsand
           older_solution = old_solution;
           old_solution   = solution;
         }
-      // BDF2 with equal steps only: a changed step starts again with BDF1.
-      const bool step_changed =
-        previous_transient_step > 0 &&
-        std::abs(dt - previous_transient_step) > 1e-9 * dt;
+      // BDF2 on steps of changing length (BDFCoefficients); a step more
+      // than max_bdf2_step_ratio times the last starts again with BDF1.
+      // After a checkpoint without the last step's length it is taken equal.
+      const double ratio =
+        previous_transient_step > 0 ? dt / previous_transient_step : 1.;
       const unsigned int order =
-        (steps_since_start == 0 || step_changed) ? 1 : bdf_order;
+        (steps_since_start == 0 || ratio > max_bdf2_step_ratio) ? 1 : bdf_order;
+      bdf_step_ratio          = (order == 1) ? 1. : ratio;
       previous_transient_step = dt;
       last_time_step  = dt;
       last_bdf_order  = order;
@@ -1911,8 +1917,13 @@ namespace softsand
               else if (last_bdf_order == 1)
                 E = u[q] - (vf[q] * u_old[q] + solid * u_s[q]);
               else
-                E = 1.5 * u[q] - 2. * (vf[q] * u_old[q] + solid * u_s[q]) +
-                    0.5 * (vf[q] * u_older[q] + solid * u_s[q]);
+                {
+                  const BDFCoefficients c =
+                    bdf_coefficients(2, bdf_step_ratio);
+                  E = c.a0 * u[q] +
+                      c.a1 * (vf[q] * u_old[q] + solid * u_s[q]) +
+                      c.a2 * (vf[q] * u_older[q] + solid * u_s[q]);
+                }
               const double density =
                 last_was_steady ? rho + rho_theta * solid : rho_theta;
               g[q] = (density * solid / last_time_step) * E;

@@ -20,6 +20,7 @@
 #include <deal.II/lac/trilinos_block_sparse_matrix.h>
 #include <deal.II/lac/trilinos_parallel_block_vector.h>
 
+#include <softsand/fluid/bdf_coefficients.h>
 #include <softsand/fluid/block_schur_preconditioner.h>
 #include <softsand/fluid/boundary_conditions.h>
 #include <softsand/fluid/fluid_parameters.h>
@@ -53,7 +54,8 @@ namespace softsand
      *   rho* (u^{n+1} - u~) / dt + rho (w . grad) u^{n+1} - mu lap u^{n+1}
      *     + grad p^{n+1} = f,   div u^{n+1} = 0,  u~ = vf u^n + (1 - vf) u_s
      *
-     * (BDF1 shown; BDF2 is analogous). The steady modes solve the fixed point
+     * (BDF1 shown; BDF2 on steps of changing length is analogous,
+     * BDFCoefficients). The steady modes solve the fixed point
      * of the same scheme, u^{n+1} = u^n: a Brinkman term
      * beta (u - u_s) with beta = rho (1 + Theta (1 - vf)) (1 - vf) / dt, so
      * the steady solution equals the time-marched steady state exactly.
@@ -125,6 +127,14 @@ namespace softsand
       last_transient_step() const
       {
         return previous_transient_step;
+      }
+
+      /// The last advance() step over the one before it (1 after a BDF1
+      /// step or a checkpoint).
+      double
+      last_step_ratio() const
+      {
+        return bdf_step_ratio;
       }
 
       /// The largest |u| / h over the cells (h: a cell's shortest vertex
@@ -568,9 +578,10 @@ namespace softsand
       /// Pseudo-time cfl of the current Picard iteration (0: none).
       double                           pseudo_time_cfl   = 0;
       unsigned int                     steps_since_start = 0;
-      /// The last advance() step: a step of another length restarts BDF2
-      /// with BDF1 (its coefficients assume equal steps).
+      /// The last advance() step, and its length over the one before (the
+      /// step ratio of variable-step BDF2; 1 after BDF1).
       double                           previous_transient_step = 0;
+      double                           bdf_step_ratio          = 1;
       SolveStatistics                  statistics;
       /// Rigid-node model: velocity dof -> grain whose rigid velocity it is
       /// constrained to, and the reactions (grain, node, force) of the
