@@ -41,7 +41,9 @@ without --developed): a finished pressure (<workdir>/p<p_i>/sweep_done.txt;
 delete it to run that pressure again) is only tabulated, an unfinished
 one with a checkpoint restarts from it, the others start anew;
 the wall time is summed over the sessions (a killed session up to its
-last statistics row). The table's 'end' column says
+last statistics row). Ctrl-C or SIGTERM to the sweep stops it cleanly:
+each running injection finishes its step and writes a checkpoint, no
+further pressure starts, and the table is written. The table's 'end' column says
 why each run ended: reach, stalled, time (end time or max steps).
 """
 import argparse
@@ -49,6 +51,7 @@ import concurrent.futures
 import math
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -86,6 +89,37 @@ def end_reason(log_text):
     return 'time'
 
 
+# softsand's exit code after a stop signal: it finished its step and wrote a
+# checkpoint (base/stop_request.h).
+EXIT_STOPPED = 75
+
+
+class StopRequest:
+    """SIGINT or SIGTERM to the sweep: each running softsand gets SIGUSR1
+    (mpirun passes it on to the ranks), finishes its step, writes a
+    checkpoint and exits; the sweep starts no further pressure, tabulates
+    and exits. The same command resumes."""
+
+    def __init__(self):
+        self.requested = False
+        self.children = set()
+
+    def __call__(self, signum, frame):
+        if self.requested:
+            raise KeyboardInterrupt
+        self.requested = True
+        print('sweep: stop requested; each run finishes its step and writes '
+              'a checkpoint (again to abort)', file=sys.stderr, flush=True)
+        for child in list(self.children):
+            try:
+                child.send_signal(signal.SIGUSR1)
+            except OSError:
+                pass
+
+
+STOP = StopRequest()
+
+
 def run_one(args, text, p):
     name = 'p%g' % p
     outdir = os.path.join(args.workdir, name)
@@ -93,6 +127,8 @@ def run_one(args, text, p):
     wall_file = os.path.join(outdir, 'sweep_wall.txt')
     if os.path.exists(done_file):
         return summarize_one(args, p)
+    if STOP.requested:
+        return dict(p=p, stopped=True, wall=0)
     overrides = [('boundary conditions/inlet region/pressure', '%g' % p)]
     if args.developed:
         overrides += [
@@ -157,15 +193,22 @@ def run_one(args, text, p):
         log.write('# %s%s\n' % (' '.join(cmd),
                                  ' (restart)' if restart else ''))
         log.flush()
-        proc = subprocess.run(cmd, stdout=log, stderr=subprocess.PIPE,
-                              text=True)
-        log.write(proc.stderr)
+        proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.PIPE,
+                                text=True)
+        STOP.children.add(proc)
+        stderr = proc.communicate()[1]
+        STOP.children.discard(proc)
+        log.write(stderr)
     wall = earlier + time.time() - start
     with open(wall_file, 'w') as f:
         f.write('%.1f\n' % wall)
     os.remove(running_file)
+    if proc.returncode == EXIT_STOPPED or (STOP.requested and
+                                           proc.returncode != 0):
+        # Stopped on request after a step, with a checkpoint: not done.
+        return dict(p=p, stopped=True, wall=wall)
     if proc.returncode != 0:
-        return dict(p=p, error=' '.join(proc.stderr.strip().splitlines()[-1:]),
+        return dict(p=p, error=' '.join(stderr.strip().splitlines()[-1:]),
                     wall=wall)
     with open(done_file, 'w') as f:
         f.write(end_reason(open(os.path.join(args.workdir,
@@ -250,6 +293,8 @@ def main():
     if args.summarize:
         results = [summarize_one(args, p) for p in pressures]
     else:
+        signal.signal(signal.SIGINT, STOP)
+        signal.signal(signal.SIGTERM, STOP)
         with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
             results = list(pool.map(lambda p: run_one(args, text, p),
                                     pressures))
@@ -261,6 +306,11 @@ def main():
              'Re_p_end end']
     below, above = None, None
     for r in sorted(results, key=lambda r: r['p']):
+        if r.get('stopped'):
+            r.update(summarize_one(args, r['p']))
+            if 'error' in r:
+                lines.append('%g stopped before its first step' % r['p'])
+                continue
         if 'error' in r:
             lines.append('%g FAILED %s (%.0f s)' % (r['p'], r['error'],
                                                     r['wall']))
@@ -307,6 +357,10 @@ def main():
                            else 'sweep.txt'), 'w') as f:
         f.write('\n'.join(lines) + '\n')
     print('\n'.join(lines))
+    if STOP.requested:
+        print('sweep: stopped on request; the same command resumes',
+              file=sys.stderr)
+        sys.exit(EXIT_STOPPED)
 
 
 if __name__ == '__main__':

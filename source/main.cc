@@ -2,6 +2,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <softsand/base/parameter_tools.h>
+#include <softsand/base/stop_request.h>
 #include <softsand/core/parameters.h>
 #include <softsand/drivers/run_parameter_file.h>
 
@@ -67,7 +68,10 @@ main(int argc, char *argv[])
         }
       try
         {
+          softsand::base::install_stop_handlers();
           softsand::drivers::run_parameter_file(argv[1], MPI_COMM_WORLD);
+          if (softsand::base::stopped_on_request())
+            return softsand::base::exit_code_stopped;
         }
       catch (const std::exception &e)
         {

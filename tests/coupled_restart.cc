@@ -10,10 +10,16 @@
 // agree to 2e-9 (with 1e-8, to 3e-5). The measured resistance (secant of
 // two solves) that grains near walls or other grains use is checkpointed;
 // used for this free grain it amplified the round-off tenfold per step.
+// A stop signal (SIGUSR1, as mpirun passes on) before the first step ends a
+// third run after that step with a checkpoint there; restarted, it must
+// also equal the uninterrupted run.
 
 #include <deal.II/base/mpi.h>
 
+#include <softsand/base/stop_request.h>
+
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <sstream>
 
@@ -86,6 +92,25 @@ main(int argc, char **argv)
                        std::abs(resumed.at(name) / whole.at(name) - 1));
   deallog << "restarted run equals the uninterrupted one (1e-7): "
           << (largest < 1e-7 ? "yes" : "no") << std::endl;
+
+  softsand::base::install_stop_handlers();
+  std::raise(SIGUSR1);
+  run_scene<3>(scene("signalled", 6e-3, false));
+  deallog << "signalled run stopped on request: "
+          << (softsand::base::stopped_on_request() ? "yes" : "no")
+          << ", after " << read_statistics("signalled/statistics.txt")
+                             .at("step")
+                             .size()
+          << " step(s), checkpoint written: "
+          << (std::ifstream("signalled/checkpoint-1.dem") ? "yes" : "no")
+          << std::endl;
+  const auto continued = run_scene<3>(scene("signalled", 6e-3, true));
+  double     difference = 0;
+  for (const std::string name : {"grain0_x", "grain0_vx", "grain_force_x"})
+    difference = std::max(difference,
+                          std::abs(continued.at(name) / whole.at(name) - 1));
+  deallog << "continued after the stop, equals the uninterrupted run (1e-7): "
+          << (difference < 1e-7 ? "yes" : "no") << std::endl;
   deallog << "the mesh followed the grain: "
           << (whole.at("mesh_adaptations") > 0 ? "yes" : "no") << std::endl;
   deallog << "statistics rows after the restart: "

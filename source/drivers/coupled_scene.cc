@@ -1,3 +1,4 @@
+#include <softsand/base/stop_request.h>
 #include <softsand/base/warnings.h>
 #include <softsand/coupling/grain_mesh_refinement.h>
 #include <softsand/drivers/coupled_scene.h>
@@ -78,9 +79,13 @@ namespace softsand
           record_grains(dt);
           if (write && grain_output)
             grain_output->write(dem->particles(), time, mpi_communicator);
-          if (sc.checkpoint_interval > 0 && step % sc.checkpoint_interval == 0)
+          const bool checkpointed =
+            sc.checkpoint_interval > 0 && step % sc.checkpoint_interval == 0;
+          if (checkpointed)
             write_checkpoint();
           report_progress(last, loop_clock);
+          if (stop_on_request(checkpointed))
+            break;
         }
       finish();
     }
@@ -325,6 +330,23 @@ namespace softsand
           fluid.adapt_to_grains(true);
           ++n_mesh_adaptations;
         }
+    }
+
+
+    bool
+    CoupledScene::stop_on_request(const bool checkpointed)
+    {
+      if (!base::stop_requested(mpi_communicator))
+        return false;
+      if (!checkpointed)
+        write_checkpoint();
+      console.pcout << "Stopped on request after step " << step << ", t = "
+                    << time << " s: checkpoint written in "
+                    << parameters.output.directory
+                    << "; set simulation control/restart = true to continue."
+                    << std::endl;
+      base::note_stopped_on_request();
+      return true;
     }
 
 

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include <softsand/base/stop_request.h>
 #include <softsand/drivers/checkpoint_files.h>
 #include <softsand/drivers/fluid_scene.h>
 #include <softsand/io/scene_grains.h>
@@ -132,9 +133,23 @@ namespace softsand
             solver.relative_velocity_change() < sc.steady_state_tolerance;
           const bool last = steady || sc.reached_end(time, step);
           record(step, time, parameters.output.output_due(step, last));
-          if (sc.checkpoint_interval > 0 && step % sc.checkpoint_interval == 0 &&
-              !last)
+          const bool checkpointed = sc.checkpoint_interval > 0 &&
+                                    step % sc.checkpoint_interval == 0 && !last;
+          if (checkpointed)
             write_checkpoint(step, time);
+          if (!last && base::stop_requested(mpi_communicator))
+            {
+              if (!checkpointed)
+                write_checkpoint(step, time);
+              console.pcout << "Stopped on request after step " << step
+                            << ", t = " << time << " s: checkpoint written in "
+                            << parameters.output.directory
+                            << "; set simulation control/restart = true to "
+                               "continue."
+                            << std::endl;
+              base::note_stopped_on_request();
+              break;
+            }
           // A line per step, but at most one every 5 s on quick steps.
           if (last || loop_clock.wall_time() >= last_report + 5)
             {

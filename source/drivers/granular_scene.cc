@@ -1,3 +1,4 @@
+#include <softsand/base/stop_request.h>
 #include <softsand/base/warnings.h>
 #include <softsand/drivers/checkpoint_files.h>
 #include <softsand/drivers/granular_scene.h>
@@ -53,12 +54,30 @@ namespace softsand
           if (parameters.dem.output_interval > 0 &&
               n % parameters.dem.output_interval == 0)
             write_grains();
-          if (checkpoint_interval > 0 && n % checkpoint_interval == 0 &&
-              !settled && !finished())
+          const bool checkpointed = checkpoint_interval > 0 &&
+                                    n % checkpoint_interval == 0 &&
+                                    !settled && !finished();
+          if (checkpointed)
             write_checkpoint();
           report_progress();
           if (settled)
             break;
+          // Checked at the statistics rows: a collective per DEM step would
+          // cost more than the step.
+          if (last_recorded && !finished() &&
+              base::stop_requested(mpi_communicator))
+            {
+              if (!checkpointed)
+                write_checkpoint();
+              console.pcout << "Stopped on request after DEM step " << n
+                            << ": checkpoint written in "
+                            << parameters.output.directory
+                            << "; set simulation control/restart = true to "
+                               "continue."
+                            << std::endl;
+              base::note_stopped_on_request();
+              break;
+            }
         }
       finish(last_recorded);
     }

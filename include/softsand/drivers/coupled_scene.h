@@ -96,6 +96,11 @@ namespace softsand
       /// In coupled_checkpoint.cc.
       void
       write_checkpoint();
+
+      /// A stop signal (base::install_stop_handlers) after this step: write
+      /// a checkpoint unless @p checkpointed already, and say so.
+      bool
+      stop_on_request(const bool checkpointed);
       void
       read_checkpoint();
 
