@@ -49,8 +49,14 @@ namespace softsand
 
 
     void
-    note_stopped_on_request()
+    report_stop(const dealii::ConditionalOStream &out,
+                const std::string                &where,
+                const std::string                &directory)
     {
+      out << "Stopped on request after " << where
+          << ": checkpoint written in " << directory
+          << "; set simulation control/restart = true to continue."
+          << std::endl;
       stopped = true;
     }
 

@@ -340,12 +340,10 @@ namespace softsand
         return false;
       if (!checkpointed)
         write_checkpoint();
-      console.pcout << "Stopped on request after step " << step << ", t = "
-                    << time << " s: checkpoint written in "
-                    << parameters.output.directory
-                    << "; set simulation control/restart = true to continue."
-                    << std::endl;
-      base::note_stopped_on_request();
+      std::ostringstream where;
+      where << "step " << step << ", t = " << time << " s";
+      base::report_stop(console.pcout, where.str(),
+                        parameters.output.directory);
       return true;
     }
 

@@ -141,13 +141,10 @@ namespace softsand
             {
               if (!checkpointed)
                 write_checkpoint(step, time);
-              console.pcout << "Stopped on request after step " << step
-                            << ", t = " << time << " s: checkpoint written in "
-                            << parameters.output.directory
-                            << "; set simulation control/restart = true to "
-                               "continue."
-                            << std::endl;
-              base::note_stopped_on_request();
+              std::ostringstream where;
+              where << "step " << step << ", t = " << time << " s";
+              base::report_stop(console.pcout, where.str(),
+                                parameters.output.directory);
               break;
             }
           // A line per step, but at most one every 5 s on quick steps.

@@ -69,13 +69,9 @@ namespace softsand
             {
               if (!checkpointed)
                 write_checkpoint();
-              console.pcout << "Stopped on request after DEM step " << n
-                            << ": checkpoint written in "
-                            << parameters.output.directory
-                            << "; set simulation control/restart = true to "
-                               "continue."
-                            << std::endl;
-              base::note_stopped_on_request();
+              base::report_stop(console.pcout,
+                                "DEM step " + std::to_string(n),
+                                parameters.output.directory);
               break;
             }
         }

@@ -1,7 +1,10 @@
 #ifndef softsand_base_stop_request_h
 #define softsand_base_stop_request_h
 
+#include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/mpi.h>
+
+#include <string>
 
 namespace softsand
 {
@@ -22,9 +25,13 @@ namespace softsand
     bool
     stop_requested(const MPI_Comm comm);
 
-    /// A scene that stopped on request says so here (main's exit code).
+    /// A scene that stopped on request says so on @p out ("Stopped on
+    /// request after WHERE: checkpoint written in DIRECTORY; ...") and here
+    /// (main's exit code).
     void
-    note_stopped_on_request();
+    report_stop(const dealii::ConditionalOStream &out,
+                const std::string                &where,
+                const std::string                &directory);
 
     bool
     stopped_on_request();
