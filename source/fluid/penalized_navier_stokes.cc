@@ -935,24 +935,15 @@ namespace softsand
                       rho * (1. + fluid_parameters.theta * solid);
                     const Tensor<1, dim> u_tilde_old =
                       vf * u_old[q] + solid * solid_velocity[q];
-                    if (first_order)
-                      {
-                        beta     = rho_star / dt;
-                        beta_rhs = beta * u_tilde_old;
-                        w        = u_old[q];
-                        div_w    = trace(grad_u_old[q]);
-                      }
-                    else
-                      {
-                        const Tensor<1, dim> u_tilde_older =
-                          vf * u_older[q] + solid * solid_velocity[q];
-                        beta     = bdf.a0 * rho_star / dt;
-                        beta_rhs = -rho_star / dt *
-                                   (bdf.a1 * u_tilde_old + bdf.a2 * u_tilde_older);
-                        w     = bdf.e1 * u_old[q] + bdf.e2 * u_older[q];
-                        div_w = bdf.e1 * trace(grad_u_old[q]) +
-                                bdf.e2 * trace(grad_u_older[q]);
-                      }
+                    // BDF1: a2 = e2 = 0, so u_older (left at zero) drops out.
+                    const Tensor<1, dim> u_tilde_older =
+                      vf * u_older[q] + solid * solid_velocity[q];
+                    beta     = bdf.a0 * rho_star / dt;
+                    beta_rhs = -rho_star / dt *
+                               (bdf.a1 * u_tilde_old + bdf.a2 * u_tilde_older);
+                    w        = bdf.e1 * u_old[q] + bdf.e2 * u_older[q];
+                    div_w    = bdf.e1 * trace(grad_u_old[q]) +
+                            bdf.e2 * trace(grad_u_older[q]);
                     convection = true;
                   }
                 else
@@ -1892,6 +1883,8 @@ namespace softsand
       std::vector<Tensor<1, dim>>      g;
       const double                     rho = fluid_parameters.density;
       const double rho_theta = fluid_parameters.density * fluid_parameters.theta;
+      const BDFCoefficients bdf =
+        bdf_coefficients(last_bdf_order, bdf_step_ratio);
       const auto penalty_density = [&](const FEValues<dim>               &fe_values,
                                        const std::vector<double>         &vf,
                                        const std::vector<Tensor<1, dim>> &u_s,
@@ -1914,16 +1907,10 @@ namespace softsand
               Tensor<1, dim> E;
               if (last_was_steady)
                 E = u[q] - u_s[q];
-              else if (last_bdf_order == 1)
-                E = u[q] - (vf[q] * u_old[q] + solid * u_s[q]);
               else
-                {
-                  const BDFCoefficients c =
-                    bdf_coefficients(2, bdf_step_ratio);
-                  E = c.a0 * u[q] +
-                      c.a1 * (vf[q] * u_old[q] + solid * u_s[q]) +
-                      c.a2 * (vf[q] * u_older[q] + solid * u_s[q]);
-                }
+                E = bdf.a0 * u[q] +
+                    bdf.a1 * (vf[q] * u_old[q] + solid * u_s[q]) +
+                    bdf.a2 * (vf[q] * u_older[q] + solid * u_s[q]);
               const double density =
                 last_was_steady ? rho + rho_theta * solid : rho_theta;
               g[q] = (density * solid / last_time_step) * E;
