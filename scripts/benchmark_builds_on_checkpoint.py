@@ -29,43 +29,12 @@ import sys
 sys.path.insert(0, os.path.dirname(__file__))
 import prm_tools  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-
-
 def checkpoint_step(directory):
     steps = [int(m.group(1)) for f in os.listdir(directory)
              for m in [re.match(r'checkpoint-(\d+)\.dem$', f)] if m]
     if not steps:
         sys.exit('no checkpoint-N.dem in %s' % directory)
     return max(steps)
-
-
-def timer_sections(log_text):
-    """{section: seconds} of the last timer table, average over ranks."""
-    table = log_text[log_text.rfind('Total wallclock time elapsed'):]
-    sections = {}
-    for line in table.splitlines():
-        m = re.match(r'\|\s*([^|]+?)\s*\|\s*(\d+)\s*\|\s*[\d.e+-]+s\s+\d+\s*\|'
-                     r'\s*([\d.e+-]+)s\s*\|', line)
-        if m:
-            sections[m.group(1)] = (int(m.group(2)), float(m.group(3)))
-    total = re.search(r'Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s', table)
-    if total:
-        sections['total'] = (1, float(total.group(1)))
-    return sections
-
-
-def last_statistics(path):
-    header, row = None, None
-    with open(path) as f:
-        for line in f:
-            if line.startswith('#') or not line.strip():
-                continue
-            if header is None:
-                header = line.split()
-            else:
-                row = line.split()
-    return dict(zip(header, row))
 
 
 def main():
@@ -130,13 +99,15 @@ def main():
             if rc != 0:
                 sys.exit('%s exited %d: see %s.out' % (name, rc, directory))
             with open(os.path.join(directory, 'log.txt')) as f:
-                sections = timer_sections(f.read())
+                log = f.read()  # earlier sessions' tables come first
+            sections = prm_tools.timer_sections(
+                log[log.rfind('| Total wallclock time elapsed'):], column='avg')
             for section, (calls, seconds) in sections.items():
                 times[name].setdefault(section, []).append(
                     seconds / args.steps if section == 'total' or calls >= args.steps
                     else seconds)
-            ends[name].append(last_statistics(os.path.join(directory, 'statistics.txt')))
-            shutil.rmtree(os.path.join(directory))  # checkpoints are large
+            ends[name].append(prm_tools.read_statistics(directory)[-1])
+            shutil.rmtree(directory)  # checkpoints are large
             os.makedirs(directory)
 
     print('\nmedian over %d repetitions, seconds per step (sections called '
@@ -153,13 +124,10 @@ def main():
     worst = (0., None)
     for n in names:
         for row in ends[n]:
-            for column, value in row.items():
-                try:
-                    a, b = float(reference[column]), float(value)
-                except (ValueError, KeyError):
+            for column, b in row.items():
+                if 'wall' in column or column not in reference:
                     continue
-                if column in ('wall_time',) or 'wall' in column:
-                    continue
+                a = reference[column]
                 scale = max(abs(a), abs(b), 1e-300)
                 d = abs(a - b) / scale
                 if d > worst[0]:

@@ -110,21 +110,6 @@ def candidate_overrides(spec):
     return overrides + prm_tools.parse_set([e for e in extra if e])
 
 
-def timer_sections(stdout):
-    """Section -> (calls, max time over ranks in s) of the last timer table."""
-    sections = {}
-    for line in stdout.splitlines():
-        m = re.match(r'\|\s*([^|]+?)\s*\|\s*(\d+)\s*\|\s*[\d.e+-]+s\s+\d+\s*\|'
-                     r'\s*[\d.e+-]+s\s*\|\s*([\d.e+-]+)s', line)
-        if m:
-            sections[m.group(1)] = (int(m.group(2)), float(m.group(3)))
-        m = re.match(r'\|\s*Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s',
-                     line)
-        if m:
-            sections['total'] = (1, float(m.group(1)))
-    return sections
-
-
 def run(a, problem, spec, ranks, tolerance=None):
     prm, overrides, qoi = problems(a)[problem]
     text = open(os.path.join(ROOT, prm)).read()
@@ -164,7 +149,7 @@ def run(a, problem, spec, ranks, tolerance=None):
         result['error'] = (errors or ['exit %d' % proc.returncode])[-1][:160]
         return result
     rows = prm_tools.read_statistics(outdir)
-    timers = timer_sections(proc.stdout)
+    timers = prm_tools.timer_sections(proc.stdout)
     result.update(rows=rows, dofs=int(rows[0]['dofs']),
                   iterations=int(rows[0]['linear_iterations']),
                   qoi=rows[0][qoi], timers=timers,

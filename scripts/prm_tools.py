@@ -111,6 +111,25 @@ def read_statistics(directory):
     return read_table(os.path.join(directory, 'statistics.txt'))
 
 
+def timer_sections(text, column='max'):
+    """Section -> (calls, time over ranks in s) of the timer table in
+    @p text (a later table's rows replace an earlier one's); @p column
+    'max' or 'avg' picks the time over ranks. 'total': the wall clock."""
+    assert column in ('max', 'avg')
+    sections = {}
+    for line in text.splitlines():
+        m = re.match(r'\|\s*([^|]+?)\s*\|\s*(\d+)\s*\|\s*[\d.e+-]+s\s+\d+\s*\|'
+                     r'\s*([\d.e+-]+)s\s*\|\s*([\d.e+-]+)s', line)
+        if m:
+            seconds = m.group(4) if column == 'max' else m.group(3)
+            sections[m.group(1)] = (int(m.group(2)), float(seconds))
+        m = re.match(r'\|\s*Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s',
+                     line)
+        if m:
+            sections['total'] = (1, float(m.group(1)))
+    return sections
+
+
 def run(softsand, text, workdir, name, ranks=1, overrides=()):
     """Write <workdir>/<name>.prm with the overrides applied, run it, and
     return (last statistics row, wall time in s)."""
