@@ -20,25 +20,36 @@ MPI_ENVIRONMENT = {
 for _name, _value in MPI_ENVIRONMENT.items():
     os.environ.setdefault(_name, _value)
 
+def _lines(text):
+    """Each line of a .prm text with the subsections it lies in and, for a
+    'set' line, its key and value (comment removed); else None, None."""
+    stack = []
+    for line in text.splitlines():
+        s = line.split('#')[0].strip()
+        m = re.match(r'subsection\s+(.*)$', s)
+        key = value = None
+        if m:
+            stack.append(m.group(1).strip())
+        elif s == 'end':
+            stack.pop()
+        else:
+            m = re.match(r'set\s+(.*?)\s*=\s*(.*)$', s)
+            if m:
+                key, value = m.group(1), m.group(2).strip()
+        yield line, stack, key, value
+
+
 def set_entry(text, path, value):
     """Set 'subsection a/subsection b/set key' in a .prm text; append the
     subsection block at the end if the entry is not there (ParameterHandler
     accepts a subsection entered twice)."""
     parts = path.split('/')
     sections, key = parts[:-1], parts[-1]
-    stack, out, done = [], [], False
-    for line in text.splitlines():
-        s = line.strip()
-        m = re.match(r'subsection\s+(.*)$', s)
-        if m:
-            stack.append(m.group(1).strip())
-        elif s == 'end':
-            stack.pop()
-        else:
-            m = re.match(r'set\s+(.*?)\s*=', s)
-            if m and m.group(1) == key and stack == sections and not done:
-                line = line[:line.index('set')] + 'set %s = %s' % (key, value)
-                done = True
+    out, done = [], False
+    for line, stack, k, _ in _lines(text):
+        if k == key and stack == sections and not done:
+            line = line[:line.index('set')] + 'set %s = %s' % (key, value)
+            done = True
         out.append(line)
     if not done:
         for i, sec in enumerate(sections):
@@ -47,6 +58,18 @@ def set_entry(text, path, value):
         for i in reversed(range(len(sections))):
             out.append('  ' * i + 'end')
     return '\n'.join(out) + '\n'
+
+
+def get_entry(text, path):
+    """The value of 'subsection a/subsection b/set key' in a .prm text (the
+    last one set), or None."""
+    parts = path.split('/')
+    sections, key = parts[:-1], parts[-1]
+    value = None
+    for _, stack, k, v in _lines(text):
+        if k == key and stack == sections:
+            value = v
+    return value
 
 
 def add_set_argument(parser, what):
