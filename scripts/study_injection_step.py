@@ -59,6 +59,11 @@ def main():
                  % args.steps)
     if not steps or min(steps) <= 0:
         sys.exit('--steps: every step must be > 0 s, got %r' % args.steps)
+    if args.pressure <= 0:
+        sys.exit('--pressure %g Pa: the inlet pressure must be > 0 (the flow '
+                 'rate is compared between steps)' % args.pressure)
+    if args.ranks < 1:
+        sys.exit('--ranks %d: must be at least 1' % args.ranks)
     if not 0 <= args.window_start < args.end_time:
         sys.exit('--window-start %g s must lie in [0, --end-time = %g s)'
                  % (args.window_start, args.end_time))
