@@ -74,8 +74,14 @@ def main():
 
     with open(args.scene) as f:
         text = f.read()
-    grains = prm_tools.read_grains(
-        os.path.join(ROOT, prm_tools.get_entry(text, 'grains/file')))
+    # --set first, so that the grains and the fluid read below are the run's.
+    for path, value in prm_tools.parse_set(args.set):
+        text = prm_tools.set_entry(text, path, value)
+    pack = prm_tools.get_entry(text, 'grains/file')
+    if pack is None:
+        sys.exit('%s: no grains/file entry (the mean grain diameter of the '
+                 'Reynolds numbers comes from the pack file)' % args.scene)
+    grains = prm_tools.read_grains(os.path.join(ROOT, pack))
     d = statistics.mean(2 * g[3] for g in grains)  # (x, y, z, radius)
     rho = float(prm_tools.get_entry(text, 'fluid/density'))
     mu = float(prm_tools.get_entry(text, 'fluid/viscosity'))
@@ -88,7 +94,6 @@ def main():
                      ('coupling/max courant number', '0'),
                      ('boundary conditions/inlet region/pressure',
                       '%g' % args.pressure)]
-        overrides += prm_tools.parse_set(args.set)
         name = 'dt%g' % dt
         print('dt = %g s ...' % dt, flush=True)
         last, wall, error = prm_tools.run(args.softsand, text, args.workdir,
@@ -97,6 +102,10 @@ def main():
             sys.exit('dt = %g s failed: %s' % (dt, ' '.join(error)))
         w = window_stats(prm_tools.read_statistics(
             os.path.join(args.workdir, name)), args.window_start)
+        if w is None:
+            sys.exit('dt = %g s: no statistics row after --window-start = %g s '
+                     '(see %s)' % (dt, args.window_start,
+                                   os.path.join(args.workdir, name)))
         results.append((dt, wall, w))
 
     reference = results[-1][2]['q']
