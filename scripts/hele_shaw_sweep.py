@@ -32,10 +32,10 @@ root.
 Developed fractures (--developed): each injection runs until its fracture
 reaches --reach-fraction (0.8) of the scene's fracture-map outer radius,
 its area grows by less than one pixel over --stall-steps (40) coupling
-steps (20 stopped a small-scene run at 5.7 kPa 3.5 ms before its growth
-began; doc/hele_shaw.md), or --end-time (default 0.2 s with --developed), whichever comes
+steps, or --end-time (default 0.2 s with --developed), whichever comes
 first (postprocessing/fracture area/stop at reach and stop when stalled
-over). Every run writes a checkpoint every --checkpoint-interval coupling
+over). A window of 20 steps stopped a small-scene run at 5.7 kPa 3.5 ms
+before its growth began (doc/hele_shaw.md). Every run writes a checkpoint every --checkpoint-interval coupling
 steps (default 5 with --developed) and its screen output to
 <workdir>/p<p_i>.log. Running the same command again resumes (with or
 without --developed): a finished pressure (<workdir>/p<p_i>/sweep_done.txt;
