@@ -15,6 +15,14 @@
 //    pack's position is neutral under equal pressures: up to 0.2 R over
 //    seeds 1-6), and the grains' area fraction of the octagon that of a
 //    compacted random layer of discs (0.82 measured).
+// 3. The contact stress (Love-Weber, `contact_stress_*` columns). One
+//    grain: sigma_xx + sigma_yy is the pistons' forces times the branch
+//    lengths r - delta/2 over the probe volume, exactly. A pack in
+//    equilibrium carries on average the load its boundary applies: without
+//    friction (3.), (sigma_xx + sigma_yy) V is the pistons' sum of F_k R_k
+//    (measured 1.004); with friction 0.7 (2.) the plates' friction takes
+//    part of it (0.75 measured: the in-plane load pushes grains against
+//    the plates, sigma_zz > 0).
 
 #include <deal.II/base/mpi.h>
 
@@ -43,6 +51,22 @@ namespace
     drivers::GranularScene simulator(parameters, MPI_COMM_WORLD);
     simulator.run();
     check(simulator, parameters);
+  }
+
+  /// The grains' in-plane contact stress (sigma_xx + sigma_yy times the
+  /// probe's volume) over the pistons' load, the sum of their normal forces
+  /// times their distances from the octagon's centre (the origin): 1 for a
+  /// pack in equilibrium that only the pistons load in-plane.
+  double
+  in_plane_stress_over_piston_load(const drivers::GranularScene &simulator,
+                                   const BoundingBox<3>         &probe)
+  {
+    double load = 0;
+    for (const auto &wall : simulator.dynamics().get_walls())
+      if (wall.name.find("piston") == 0)
+        load += wall.normal_force * -(wall.point * wall.normal);
+    const auto stress = simulator.dynamics().statistics(probe).contact_stress;
+    return (stress[0][0] + stress[1][1]) * probe.volume() / load;
   }
 } // namespace
 
@@ -88,6 +112,33 @@ main(int argc, char **argv)
                 worst_pressure =
                   std::max(worst_pressure, std::abs(wall.pressure() / p - 1));
               }
+          // The contact stress: sum of F_k (r - delta_k / 2) over the box
+          // volume for sigma_xx + sigma_yy (each piston's normal in-plane).
+          const BoundingBox<3> box(
+            std::make_pair(Point<3>(-1.5e-4, -1.5e-4, 0),
+                           Point<3>(1.5e-4, 1.5e-4, 1.2e-4)));
+          double in_plane = 0;
+          for (const auto &wall : walls)
+            if (wall.name.find("piston") == 0)
+              {
+                const double overlap =
+                  r - (grain.center - wall.point) * wall.normal;
+                in_plane += wall.normal_force * (r - 0.5 * overlap);
+              }
+          in_plane /= box.volume();
+          const auto stress =
+            simulator.dynamics().statistics(box).contact_stress;
+          deallog << "one grain: contact stress xx + yy within 1e-9 of the "
+                     "pistons' forces times r - delta/2 over the volume: "
+                  << (std::abs((stress[0][0] + stress[1][1]) / in_plane - 1) <
+                          1e-9 ?
+                        "yes" :
+                        "NO")
+                  << ", xx = yy within 1e-6: "
+                  << (std::abs(stress[0][0] / stress[1][1] - 1) < 1e-6 ? "yes" :
+                                                                         "NO")
+                  << ", zz (no plate touched) 0: "
+                  << (stress[2][2] == 0 ? "yes" : "NO") << std::endl;
           deallog << "one grain: settled "
                   << (simulator.results().at("settled") > 0 ? "yes" : "no")
                   << ", pistons " << n_pistons << ", Hertz overlap delta / R "
@@ -163,6 +214,15 @@ main(int argc, char **argv)
                   << ", final pressures within 0.5%: "
                   << (worst < 5e-3 ? "yes" : "NO") << ", lost grains "
                   << r.at("lost_grains") << std::endl;
+          const double ratio =
+            in_plane_stress_over_piston_load(simulator, domain);
+          const double zz =
+            simulator.dynamics().statistics(domain).contact_stress[2][2];
+          deallog << "pack: in-plane contact stress over the pistons' load in "
+                     "[0.6, 0.9] (the plates' friction carries the rest): "
+                  << (ratio > 0.6 && ratio < 0.9 ? "yes" : "NO")
+                  << ", zz > 0 (grains pushed against the plates): "
+                  << (zz > 0 ? "yes" : "NO") << std::endl;
           deallog << "pack: 4 widths within 4% of their mean: "
                   << (widest < 1.04 && narrowest > 0.96 ? "yes" : "NO")
                   << ", centre within R/2 of the start: "
@@ -170,6 +230,26 @@ main(int argc, char **argv)
                   << ", area fraction in [0.75, 0.95]: "
                   << (fraction > 0.75 && fraction < 0.95 ? "yes" : "NO")
                   << std::endl;
+        });
+  }
+
+  // 3. The same pack without friction: only the pistons load it in-plane.
+  {
+    std::stringstream text;
+    text << scene_text("octagon_compaction")
+         << "subsection dem\n subsection material\n  set friction = 0\n"
+            " end\nend\n";
+    run(text.str(),
+        [&](const drivers::GranularScene &simulator,
+            const core::Parameters<3> &) {
+          const BoundingBox<3> domain(
+            std::make_pair(Point<3>(-0.85e-3, -0.85e-3, 0),
+                           Point<3>(0.85e-3, 0.85e-3, 0.12e-3)));
+          const double ratio =
+            in_plane_stress_over_piston_load(simulator, domain);
+          deallog << "frictionless pack: in-plane contact stress within 1% of "
+                     "the pistons' load: "
+                  << (std::abs(ratio - 1) < 0.01 ? "yes" : "NO") << std::endl;
         });
   }
 }

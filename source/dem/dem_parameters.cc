@@ -52,9 +52,11 @@ namespace softsand
                         "DEM steps between grain VTU outputs (0: first and "
                         "last only).");
       prm.declare_entry("probe box", "", Patterns::Anything(),
-                        "Packing-fraction probe 'x0, y0, z0, x1, y1, z1' "
-                        "(grain volume with the centre inside over the box "
-                        "volume); empty: the mesh box.");
+                        "Probe 'x0, y0, z0, x1, y1, z1' of the packing "
+                        "fraction (grain volume with the centre inside over "
+                        "the box volume) and the contact stress (Love-Weber "
+                        "sum over those grains, over the box volume); empty: "
+                        "the mesh box.");
       prm.declare_entry("save pack", "", Patterns::Anything(),
                         "Write the final grains to this file (x y z radius "
                         "vx vy vz wx wy wz), relative to the output "

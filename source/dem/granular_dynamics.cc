@@ -330,6 +330,10 @@ namespace softsand
       inv_mass.resize(total);
       inv_inertia.resize(total);
       n_contacts.assign(total, 0);
+      // The grains may come in a new order: the virial is that of the next
+      // force computation (a restart reports zero stress until its first
+      // step).
+      grain_virial.assign(n_local, Tensor<2, 3>());
 
       const auto read = [&](const auto &particle, const unsigned int i) {
         const ArrayView<const double> p = particle.get_properties();
@@ -651,6 +655,7 @@ namespace softsand
           n_contacts[i]     = 0;
           grain_damping[i]  = fluid_response[i];
         }
+      grain_virial.assign(n_local, Tensor<2, 3>());
       const bool cohesive = parameters.material.cohesion_energy_density > 0;
 
       Tensor<1, 3> force, torque_i, torque_j;
@@ -705,11 +710,14 @@ namespace softsand
           grain_stiffness[j] += stiffness;
           grain_damping[i] += damping;
           grain_damping[j] += damping;
+          // n points from j to i: the contact point is at -li n from i's
+          // centre and at +lj n from j's, where the force is -force.
           if (i < n_local)
             {
               f[i] += force;
               t[i] += torque_i;
               damping_kick[i] += impulse * n;
+              grain_virial[i] -= li * outer_product(force, n);
               ++n_contacts[i];
             }
           if (j < n_local)
@@ -717,6 +725,7 @@ namespace softsand
               f[j] -= force;
               t[j] += torque_j;
               damping_kick[j] -= impulse * n;
+              grain_virial[j] -= lj * outer_product(force, n);
               ++n_contacts[j];
             }
         }
@@ -756,6 +765,8 @@ namespace softsand
           damping_kick[i] += impulse * n;
           f[i] += force;
           t[i] += torque_i;
+          // n points from the wall into the grain.
+          grain_virial[i] -= li * outer_product(force, n);
           wall.force -= force;
           wall.normal_force += force * n;
         }
@@ -918,8 +929,11 @@ namespace softsand
       GranularStatistics s;
       double sums[7] = {0, 0, 0, 0, 0, 0, 0}; // ke, overlap, count, speed, volume, n, contacts
       double max_overlap = 0, max_speed = 0;
+      Tensor<2, 3> virial;
       for (unsigned int i = 0; i < n_local; ++i)
         {
+          if (probe.point_inside(x[i]) && i < grain_virial.size())
+            virial += grain_virial[i];
           const double inertia = 1. / inv_inertia[i];
           sums[0] += 0.5 * mass[i] * v[i].norm_square() +
                      0.5 * inertia * w[i].norm_square();
@@ -966,6 +980,10 @@ namespace softsand
       s.mean_speed     = s.n_grains > 0 ? sums[3] / s.n_grains : 0;
       s.max_speed      = Utilities::MPI::max(max_speed, comm);
       s.packing_fraction = sums[4] / probe.volume();
+      virial = Utilities::MPI::sum(virial, comm);
+      // Compression pushes the grain away from the contact: force and
+      // branch vector opposed, hence the minus sign.
+      s.contact_stress = -symmetrize(virial) / probe.volume();
       return s;
     }
 

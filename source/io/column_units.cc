@@ -21,7 +21,9 @@ namespace softsand
          "m/s"},
         {std::regex("grain\\d+_w[xyz]"), "rad/s"},
         {std::regex("grain\\d+_[xyz]|.*_position|fracture_reach"), "m"},
-        {std::regex("pressure_drop|.*_pressure|ring_pressure_\\d+"), "Pa"},
+        {std::regex("pressure_drop|.*_pressure|ring_pressure_\\d+|"
+                    "contact_stress_(xx|yy|zz)"),
+         "Pa"},
         {std::regex(".*force.*|boundary_reaction_[xyz]"), "N"},
         {std::regex("flow_rate|outflow_rate|radial_flow_rate"), "m^3/s"},
         {std::regex("permeability|radial_permeability(_\\d+)?"), "m^2"},

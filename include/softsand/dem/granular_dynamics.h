@@ -3,6 +3,7 @@
 
 #include <deal.II/base/bounding_box.h>
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/particles/particle_handler.h>
 
@@ -47,6 +48,11 @@ namespace softsand
       double       mean_speed = 0;         ///< m/s
       double       max_speed = 0;          ///< m/s
       double       packing_fraction = 0;   ///< in the probe box
+      /// Contact stress in the probe box (Pa, compression positive): the
+      /// Love-Weber sum over the grains with the centre inside of the
+      /// contact forces times their branch vectors (centre to contact
+      /// point), over the box volume, from the last DEM step's forces.
+      SymmetricTensor<2, 3> contact_stress;
     };
 
     /**
@@ -266,6 +272,10 @@ namespace softsand
       std::vector<Tensor<1, 3>>          damping_kick;
       std::vector<double>                radius, mass, inv_mass, inv_inertia;
       std::vector<unsigned int>          n_contacts;
+      /// Per local grain, sum over its contacts (grains and walls) of
+      /// force (x) branch vector from the last compute_forces(): the
+      /// Love-Weber stress of statistics().
+      std::vector<Tensor<2, 3>>          grain_virial;
       /// Sum of the contact stiffnesses and dampings on each grain.
       std::vector<double>                grain_stiffness, grain_damping;
       /// Local max over grains of sqrt(stiffness / m) dt and damping dt / m.

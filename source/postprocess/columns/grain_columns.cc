@@ -26,6 +26,11 @@ namespace softsand
       statistics.add_value("omega_dt", omega_dt);
       statistics.add_value("damping_dt", damping_dt);
       statistics.add_value("packing_fraction", s.packing_fraction);
+      const char names[3] = {'x', 'y', 'z'};
+      for (unsigned int d = 0; d < 3; ++d)
+        statistics.add_value(std::string("contact_stress_") + names[d] +
+                               names[d],
+                             s.contact_stress[d][d]);
       statistics.add_value("grains", s.n_grains);
       statistics.add_value("lost_grains",
                            Utilities::MPI::sum(dem.n_lost_grains(), comm));

@@ -15,9 +15,10 @@ namespace softsand
     /**
      * The grains' statistics columns, one list for granular and coupled
      * scenes: kinetic energy, speeds, overlaps, coordination, the stability
-     * rates of the DEM step, the packing fraction in the probe box, grains
-     * present and lost, neighbour-list builds, and each wall's normal
-     * force, pressure and (plane walls) position.
+     * rates of the DEM step, the packing fraction and the normal contact
+     * stresses in the probe box, grains present and lost, neighbour-list
+     * builds, and each wall's normal force, pressure and (plane walls)
+     * position.
      */
     class GrainColumns
     {
