@@ -60,6 +60,14 @@ def main():
         text = prm_tools.set_entry(text, path, value)
     if prm_tools.get_entry(text, 'simulation control/mode') != 'granular':
         sys.exit('--stage %s is not a granular scene' % args.stage)
+    octagon_entry = floats(prm_tools.get_entry(text, 'dem/walls/octagon') or '')
+    if len(octagon_entry) < 3:
+        sys.exit('--stage %s has no octagon of pistons (dem/walls/octagon)'
+                 % args.stage)
+    if min(octagon_entry[2:]) < widths[-1] * math.sqrt(2):
+        sys.exit('--half-widths: the largest square (%g m) reaches past the '
+                 'octagon (smallest piston distance %g m)'
+                 % (widths[-1], min(octagon_entry[2:])))
     lower = floats(prm_tools.get_entry(text, 'mesh/lower corner'))
     upper = floats(prm_tools.get_entry(text, 'mesh/upper corner'))
     gap = upper[2] - lower[2]
