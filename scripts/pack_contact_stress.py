@@ -36,6 +36,14 @@ def floats(text):
     return [float(v) for v in text.split(',') if v.strip()]
 
 
+def check_inside_octagon(half_width, piston_distances):
+    """Exit unless the square of @p half_width lies inside the octagon."""
+    if min(piston_distances) < half_width * math.sqrt(2):
+        sys.exit('--half-widths: the largest square (%g m) reaches past the '
+                 'octagon (smallest piston distance %g m)'
+                 % (half_width, min(piston_distances)))
+
+
 def main():
     a = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     a.add_argument('--stage', required=True,
@@ -64,10 +72,9 @@ def main():
     if len(octagon_entry) < 3:
         sys.exit('--stage %s has no octagon of pistons (dem/walls/octagon)'
                  % args.stage)
-    if min(octagon_entry[2:]) < widths[-1] * math.sqrt(2):
-        sys.exit('--half-widths: the largest square (%g m) reaches past the '
-                 'octagon (smallest piston distance %g m)'
-                 % (widths[-1], min(octagon_entry[2:])))
+    # Before the runs from the stage's start, after them from where its
+    # pistons ended (a compaction moves them inward).
+    check_inside_octagon(widths[-1], octagon_entry[2:])
     lower = floats(prm_tools.get_entry(text, 'mesh/lower corner'))
     upper = floats(prm_tools.get_entry(text, 'mesh/upper corner'))
     gap = upper[2] - lower[2]
@@ -97,10 +104,7 @@ def main():
     row = run('whole', lower + upper)
     box = (upper[0] - lower[0]) * (upper[1] - lower[1]) * gap
     radii = [-row['piston_%d_position' % k] for k in range(8)]
-    if min(radii) < widths[-1] * math.sqrt(2):
-        sys.exit('--half-widths: the largest square (%g m) reaches past the '
-                 'octagon (smallest piston distance %g m)'
-                 % (widths[-1], min(radii)))
+    check_inside_octagon(widths[-1], radii)
     # The octagon's area: a triangle from the centre per face, its side
     # that of a regular octagon at the face's distance (the distances
     # differ by a few per cent).

@@ -932,7 +932,7 @@ namespace softsand
       Tensor<2, 3> virial;
       for (unsigned int i = 0; i < n_local; ++i)
         {
-          if (probe.point_inside(x[i]) && i < grain_virial.size())
+          if (probe.point_inside(x[i]))
             virial += grain_virial[i];
           const double inertia = 1. / inv_inertia[i];
           sums[0] += 0.5 * mass[i] * v[i].norm_square() +

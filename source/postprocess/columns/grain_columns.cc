@@ -4,6 +4,11 @@ namespace softsand
 {
   namespace postprocess
   {
+    namespace
+    {
+      constexpr char axis_names[3] = {'x', 'y', 'z'};
+    }
+
     GrainColumns::GrainColumns(const BoundingBox<3> &probe)
       : probe(probe)
     {}
@@ -26,10 +31,9 @@ namespace softsand
       statistics.add_value("omega_dt", omega_dt);
       statistics.add_value("damping_dt", damping_dt);
       statistics.add_value("packing_fraction", s.packing_fraction);
-      const char names[3] = {'x', 'y', 'z'};
       for (unsigned int d = 0; d < 3; ++d)
-        statistics.add_value(std::string("contact_stress_") + names[d] +
-                               names[d],
+        statistics.add_value(std::string("contact_stress_") + axis_names[d] +
+                               axis_names[d],
                              s.contact_stress[d][d]);
       statistics.add_value("grains", s.n_grains);
       statistics.add_value("lost_grains",
@@ -57,14 +61,13 @@ namespace softsand
                             io::StatisticsFile               &statistics)
     {
       const dem::Grain<3> first = grains.empty() ? dem::Grain<3>() : grains[0];
-      const char          names[3] = {'x', 'y', 'z'};
       for (unsigned int d = 0; d < 3; ++d)
         {
-          statistics.add_value(std::string("grain0_") + names[d],
+          statistics.add_value(std::string("grain0_") + axis_names[d],
                                first.center[d]);
-          statistics.add_value(std::string("grain0_v") + names[d],
+          statistics.add_value(std::string("grain0_v") + axis_names[d],
                                first.velocity[d]);
-          statistics.add_value(std::string("grain0_w") + names[d],
+          statistics.add_value(std::string("grain0_w") + axis_names[d],
                                first.angular_velocity[d]);
         }
     }
