@@ -19,8 +19,10 @@ writes into --workdir (default output/hele_shaw_scene_<scale>):
                              where stage 2 left them; output in
                              <workdir>/injection
 --cohesion sets the cohesion energy density of stage 2 and the injection
-(J/m^3; default the templates' 3e5), --confining-pressure the pistons'
-servo pressure in all three (Pa; default 5e3): the regime map's packs.
+(J/m^3; default the templates' 3e5), --wall-cohesion that of grain-wall
+contacts in the same two (default: the grains'; 0 lets the pack, not the
+plates, carry the pistons' load), --confining-pressure the pistons' servo
+pressure in all three (Pa; default 5e3): the regime map's packs.
 Each stage prints whether its pack settled (the DEM's own warning says so
 when it did not). Then run `build/softsand <workdir>/injection.prm`, or the
 sweep: `python3 scripts/hele_shaw_sweep.py --scene <workdir>/injection.prm`.
@@ -101,11 +103,17 @@ def main():
     a.add_argument('--cohesion', type=float, default=None,
                    help='cohesion energy density of stage 2 and the '
                         'injection (J/m^3)')
+    a.add_argument('--wall-cohesion', type=float, default=None,
+                   help='cohesion energy density of grain-wall contacts in '
+                        'stage 2 and the injection (J/m^3; default: the '
+                        "grains')")
     a.add_argument('--confining-pressure', type=float, default=None,
                    help="the pistons' servo pressure in every stage (Pa)")
     args = a.parse_args()
     if args.cohesion is not None and args.cohesion < 0:
         sys.exit('--cohesion must be >= 0, got %g' % args.cohesion)
+    if args.wall_cohesion is not None and not args.wall_cohesion >= 0:
+        sys.exit('--wall-cohesion must be >= 0, got %g' % args.wall_cohesion)
     if args.confining_pressure is not None and not args.confining_pressure > 0:
         sys.exit('--confining-pressure must be > 0, got %g'
                  % args.confining_pressure)
@@ -113,6 +121,9 @@ def main():
                  [('dem/walls/servo pressure', '%g' % args.confining_pressure)])
     cohesion = ([] if args.cohesion is None else
                 [('dem/material/cohesion energy density', '%g' % args.cohesion)])
+    if args.wall_cohesion is not None:
+        cohesion.append(('dem/material/wall cohesion energy density',
+                         '%g' % args.wall_cohesion))
     count, inlet, stage1, stage2, scene = SCALES[args.scale]
     if args.workdir is None:
         args.workdir = 'output/hele_shaw_scene_' + args.scale

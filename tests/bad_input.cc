@@ -3,7 +3,8 @@
 // files, overlapping grains, grains outside the domain, radius <= 0, a
 // cylindrical domain that is not one or conditions on faces it lacks; and
 // for granular scenes also a time step above the Rayleigh limit, servo walls
-// without a target and malformed walls or size distributions; for coupled
+// without a target, malformed walls or size distributions and a wall
+// cohesion that is negative or not a number; for coupled
 // scenes a restart without checkpoint, a zero re-adaptation distance and
 // DEM sub-steps longer than the stable DEM step.
 
@@ -129,6 +130,14 @@ main(int argc, char **argv)
                  " set size distribution = discrete\n"
                  " set discrete diameters = 1e-4, 2e-4\n"
                  " set discrete fractions = 1\nend\n");
+  check_granular("negative wall cohesion",
+                 grains + " set list = 5e-4, 5e-4, 5e-4, 1e-4\nend\n"
+                 "subsection dem\n subsection material\n"
+                 "  set wall cohesion energy density = -1e5\n end\nend\n");
+  check_granular("wall cohesion that is not a number",
+                 grains + " set list = 5e-4, 5e-4, 5e-4, 1e-4\nend\n"
+                 "subsection dem\n subsection material\n"
+                 "  set wall cohesion energy density = 3e5 J/m^3\n end\nend\n");
   // Coupled (CFD-DEM) scenes: a sphere in a 2 mm box.
   const std::string coupled =
     "subsection simulation control\n set mode = coupled\n"

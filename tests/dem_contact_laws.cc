@@ -3,7 +3,9 @@
 //    material, k = 1e5, 3e5, 1e6 J/m^3) touching without gravity come to
 //    rest where the Hertz force equals k A, A = pi (R delta - delta^2 / 4)
 //    the area of the contact circle;
-//  * the same for a grain on a wall, A = pi (2 R delta - delta^2);
+//  * the same for a grain on a wall, A = pi (2 R delta - delta^2), with the
+//    wall's own cohesion when it differs from the grains' (1e5 against 1e6),
+//    and none when it is 0 (the grain, started overlapping, leaves the wall);
 //  * rolling resistance, constant torque model: a grain rolling on the floor
 //    under gravity decelerates at 5/7 mu_r g (R* = R for a wall), so it stops
 //    after v0^2 / (2 * 5/7 mu_r g);
@@ -128,6 +130,45 @@ main(int argc, char **argv)
             << ", relative error " << std::setprecision(2)
             << std::abs(found / delta - 1) << std::setprecision(6) << std::endl;
   }
+
+  // A wall cohesion of its own: the balance follows the wall's k, not the
+  // grains'; with none, the elastic force pushes the grain off the wall.
+  for (const double wall_k : {1e5, 0.})
+    {
+      dem::DEMParameters p = material();
+      p.material.cohesion_energy_density      = 1e6;
+      p.material.wall_cohesion_energy_density = wall_k;
+      p.walls.list = "plane 0 0 0 0 0 1 fixed";
+      std::vector<dem::Grain<3>> g(1);
+      // Cohesion pulls a grain touching by 1e-3 R in; without, an overlap of
+      // 1e-2 R pushes it off (1,000 steps: it stays inside the box).
+      g[0].center = Point<3>(0, 0, R - (wall_k > 0 ? 1e-3 : 1e-2) * R);
+      g[0].radius = R;
+      const auto out = run(p, g, wall_k > 0 ? 20000 : 1000);
+      AssertThrow(out.size() == 1, ExcMessage("the grain left the box"));
+      const double found = R - out[0].center[2];
+      if (wall_k > 0)
+        {
+          const double y_eff = p.material.effective_youngs_modulus();
+          const double delta = bisect(
+            [&](const double d) {
+              return 4. / 3. * y_eff * std::sqrt(R) * std::pow(d, 1.5) -
+                     wall_k * M_PI * (2 * R * d - d * d);
+            },
+            1e-3 * R, R);
+          deallog << "grain on a wall, wall cohesion 1e5, grains 1e6: "
+                  << "delta / R = " << std::setprecision(4) << found / R
+                  << ", closed form (wall's k) " << delta / R
+                  << ", relative error " << std::setprecision(2)
+                  << std::abs(found / delta - 1) << std::setprecision(6)
+                  << std::endl;
+        }
+      else
+        deallog << "grain on a wall, wall cohesion 0, grains 1e6: left the "
+                << "wall: " << (found < 0 ? "yes" : "no")
+                << ", speed away (m/s) " << std::setprecision(3)
+                << out[0].velocity[2] << std::setprecision(6) << std::endl;
+    }
 
   // Rolling resistance on the floor.
   for (const auto model : {dem::RollingModel::constant_torque,

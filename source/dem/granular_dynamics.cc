@@ -133,6 +133,7 @@ namespace softsand
       , domain(domain)
       , particle_handler(tria, mapping(), property::n_properties)
       , law(parameters.material, parameters.rolling_model)
+      , wall_law(parameters.material.wall_material(), parameters.rolling_model)
       , walls(create_walls(parameters.walls, domain))
     {
       particle_handler.signals.particle_lost.connect(
@@ -657,6 +658,7 @@ namespace softsand
         }
       grain_virial.assign(n_local, Tensor<2, 3>());
       const bool cohesive = parameters.material.cohesion_energy_density > 0;
+      const bool wall_cohesive = parameters.material.wall_cohesion() > 0;
 
       Tensor<1, 3> force, torque_i, torque_j;
       for (unsigned int k = 0; k < pairs.size(); ++k)
@@ -745,7 +747,7 @@ namespace softsand
           if (delta <= 0)
             {
               if (h.damping_potential > 0)
-                damping_kick[i] += law.separation_impulse(h, dt) * n;
+                damping_kick[i] += wall_law.separation_impulse(h, dt) * n;
               h.clear();
               continue;
             }
@@ -755,9 +757,9 @@ namespace softsand
           const Tensor<1, 3> v_slide_rel =
             v_slide[i] - wall.velocity - cross_product_3d(li * w_slide[i], n);
           const double area =
-            cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
+            wall_cohesive ? M_PI * delta * (2 * radius[i] - delta) : 0.;
           double stiffness, damping, impulse;
-          law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, v_slide_rel, w[i],
+          wall_law.evaluate(n, delta, li, 0., radius[i], mass[i], v_rel, v_slide_rel, w[i],
                        area, dt, h, force, torque_i, torque_j, stiffness,
                        damping, impulse);
           grain_stiffness[i] += stiffness;

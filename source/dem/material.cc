@@ -2,6 +2,7 @@
 #include <softsand/dem/material.h>
 
 #include <cmath>
+#include <string>
 
 namespace softsand
 {
@@ -37,6 +38,13 @@ namespace softsand
       prm.declare_entry("cohesion energy density", "0", Patterns::Double(0),
                         "Simplified-JKR cohesion k (J/m^3): an attractive "
                         "force k A, A the area of the contact circle.");
+      prm.declare_entry("wall cohesion energy density", "same as grains",
+                        Patterns::Anything(),
+                        "Cohesion k (J/m^3) of grain-wall contacts, >= 0, or "
+                        "'same as grains' (the entry above). 0 keeps cohesive "
+                        "grains from sticking to the walls, so that a "
+                        "confined pack carries its pistons' load instead of "
+                        "the plates.");
       prm.leave_subsection();
     }
 
@@ -52,6 +60,33 @@ namespace softsand
       friction                = prm.get_double("friction");
       rolling_friction        = prm.get_double("rolling friction");
       cohesion_energy_density = prm.get_double("cohesion energy density");
+      const std::string wall_cohesion_entry =
+        prm.get("wall cohesion energy density");
+      wall_cohesion_energy_density.reset();
+      if (wall_cohesion_entry != "same as grains")
+        {
+          const auto invalid = [&]() {
+            base::throw_invalid_parameter(
+              "dem/material/wall cohesion energy density",
+              wall_cohesion_entry,
+              "it must be a number >= 0 (J/m^3) or 'same as grains'");
+          };
+          std::size_t parsed = 0;
+          double      value  = -1;
+          try
+            {
+              value = std::stod(wall_cohesion_entry, &parsed);
+            }
+          catch (const std::exception &)
+            {
+              invalid();
+            }
+          if (wall_cohesion_entry.find_first_not_of(" \t", parsed) !=
+                std::string::npos ||
+              !(value >= 0) || !std::isfinite(value))
+            invalid();
+          wall_cohesion_energy_density = value;
+        }
       const auto positive = [&](const std::string &entry, const double v) {
         if (!(v > 0))
           base::throw_invalid_parameter("dem/material/" + entry,

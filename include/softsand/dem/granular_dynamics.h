@@ -245,6 +245,8 @@ namespace softsand
       BoundingBox<3>       domain;
       Particles::ParticleHandler<3> particle_handler;
       ContactLaw           law;
+      /// The same law with the grain-wall cohesion.
+      ContactLaw           wall_law;
       std::vector<Wall>    walls;
 
       double        dt = 0, t_rayleigh = 0, current_time = 0;

@@ -3,6 +3,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <optional>
+
 namespace softsand
 {
   namespace dem
@@ -11,7 +13,8 @@ namespace softsand
 
     /**
      * Mechanical properties of the grains (one material per scene; walls
-     * share them and are rigid and infinitely massive).
+     * share them, except perhaps the cohesion, and are rigid and infinitely
+     * massive).
      */
     struct Material
     {
@@ -23,6 +26,27 @@ namespace softsand
       double rolling_friction = 0;     ///< mu_r (dimensionless)
       /// Simplified-JKR cohesion energy density k (J/m^3): F = k A.
       double cohesion_energy_density = 0;
+      /// The same for grain-wall contacts; unset: the grains' value. Cohesive
+      /// grains stuck to the plates of a Hele-Shaw cell let the plates carry
+      /// the pistons' load instead of the pack.
+      std::optional<double> wall_cohesion_energy_density;
+
+      /// The cohesion energy density of a grain-wall contact (J/m^3).
+      double
+      wall_cohesion() const
+      {
+        return wall_cohesion_energy_density.value_or(cohesion_energy_density);
+      }
+
+      /// This material with the grain-wall cohesion as its cohesion: what
+      /// the contact law of grain-wall contacts uses.
+      Material
+      wall_material() const
+      {
+        Material m                = *this;
+        m.cohesion_energy_density = wall_cohesion();
+        return m;
+      }
 
       /// Shear modulus G = Y / (2 (1 + nu)).
       double
