@@ -13,7 +13,10 @@ stage at sigma), then runs scripts/hele_shaw_sweep.py on it at inlet
 pressures p_i = ratio x sigma for each of --ratios, and reads the critical
 bracket from the sweep's table. Points: every cohesion at the middle
 confining pressure, and every confining pressure at --reference-cohesion
-(the scenes' 3e5 J/m^3). Everything goes to --workdir/c<c>_s<sigma>/; a
+(the scenes' 3e5 J/m^3). --wall-cohesion gives every pack its own
+grain-wall cohesion (0: the pack, not the plates, carries the pistons'
+load). Everything goes to --workdir/c<c>_s<sigma>/ (c<c>_w<wall>_s<sigma>/
+with --wall-cohesion); a
 point whose sweep finished is only read again, so the command resumes.
 Options after '--' go to the sweep (e.g. -- --developed --stall-steps 40).
 Prints and writes <workdir>/regime_map.txt: c, sigma, the bracket, its
@@ -58,15 +61,19 @@ def bracket(sweep_table):
 
 
 def run_point(args, sweep_args, cohesion, sigma):
-    point = os.path.join(args.workdir, 'c%g_s%g' % (cohesion, sigma))
+    walls = ('' if args.wall_cohesion is None else
+             '_w%g' % args.wall_cohesion)
+    point = os.path.join(args.workdir, 'c%g%s_s%g' % (cohesion, walls, sigma))
     scene = os.path.join(point, 'injection.prm')
     if not os.path.exists(scene):
-        made = subprocess.run([sys.executable,
-                               os.path.join(HERE, 'make_hele_shaw_scene.py'),
-                               '--scale', args.scale, '--workdir', point,
-                               '--cohesion', '%g' % cohesion,
-                               '--confining-pressure', '%g' % sigma,
-                               '--softsand', args.softsand])
+        make = [sys.executable, os.path.join(HERE, 'make_hele_shaw_scene.py'),
+                '--scale', args.scale, '--workdir', point,
+                '--cohesion', '%g' % cohesion,
+                '--confining-pressure', '%g' % sigma,
+                '--softsand', args.softsand]
+        if args.wall_cohesion is not None:
+            make += ['--wall-cohesion', '%g' % args.wall_cohesion]
+        made = subprocess.run(make)
         if made.returncode != 0:
             raise PointFailed('the pack could not be prepared, see the '
                               'stage logs in ' + point)
@@ -96,6 +103,9 @@ def main():
     a.add_argument('--cohesions', type=floats, default=[0, 1e5, 3e5, 1e6])
     a.add_argument('--confining', type=floats, default=[2500, 5000, 10000])
     a.add_argument('--reference-cohesion', type=float, default=3e5)
+    a.add_argument('--wall-cohesion', type=float, default=None,
+                   help="grain-wall cohesion of every pack (J/m^3; default "
+                        "the grains')")
     a.add_argument('--ratios', type=floats,
                    default=[0.2, 0.4, 0.8, 1.6, 3.2, 6.4],
                    help='inlet pressures as multiples of sigma')
@@ -106,13 +116,17 @@ def main():
     args = a.parse_args(argv)
     if any(c < 0 for c in args.cohesions) or any(not s > 0 for s in args.confining):
         sys.exit('--cohesions must be >= 0 and --confining > 0')
+    if args.wall_cohesion is not None and not args.wall_cohesion >= 0:
+        sys.exit('--wall-cohesion must be >= 0, got %g' % args.wall_cohesion)
     middle = sorted(args.confining)[len(args.confining) // 2]
     points = [(c, middle) for c in args.cohesions]
     points += [(args.reference_cohesion, s) for s in args.confining
                if (args.reference_cohesion, s) not in points]
     os.makedirs(args.workdir, exist_ok=True)
-    lines = ['# scale %s, cells per diameter %s, ratios %s' %
-             (args.scale, args.cells_per_diameter, args.ratios),
+    lines = ['# scale %s, cells per diameter %s, ratios %s, wall cohesion %s' %
+             (args.scale, args.cells_per_diameter, args.ratios,
+              "the grains'" if args.wall_cohesion is None
+              else '%g' % args.wall_cohesion),
              '# cohesion[J/m^3] sigma[Pa] p_below[Pa] p_above[Pa] '
              'p_c[Pa] p_c/sigma']
     for c, s in points:

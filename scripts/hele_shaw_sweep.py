@@ -343,6 +343,10 @@ def main():
             'no critical pressure'))
     if not finished:
         pass
+    elif above is not None and below == 0:
+        lines.append('# critical pressure between 0 and %g Pa (0 Pa: a '
+                     'control run without flow, so no geometric mean)'
+                     % above)
     elif above is not None and below is not None:
         lines.append('# critical pressure between %g and %g Pa: %.3g Pa '
                      '(geometric mean)' % (below, above,

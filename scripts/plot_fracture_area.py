@@ -10,7 +10,9 @@ decides "fractured" (--threshold).
     --label '2,000 grains, 2 cells per mean d, transient' \
     --out doc/hele_shaw_fig9.png
 
---sweep and --label may be repeated (one label per table). A table is the
+--sweep and --label may be repeated (one label per table); with --sigma
+(one per table, the pistons' confining pressure in Pa) the pressure axis is
+p_i / sigma, the dimensionless form of injection experiments. A table is the
 `sweep.txt` that scripts/hele_shaw_sweep.py writes (or rewrites with
 --summarize): columns p_i[Pa] ... growth_max[mm^2] ... fractured ...; its
 header line names them. Growth is plotted on a symmetric-log axis (runs
@@ -64,9 +66,17 @@ def main():
                         help='growth (mm^2) above which a run counts as '
                         'fractured, drawn as a dashed line (the sweep\'s '
                         '--open-area in mm^2)')
+    parser.add_argument('--sigma', action='append', type=float, default=[],
+                        help="the pistons' confining pressure (Pa) of each "
+                        '--sweep, in order: plot against p_i / sigma')
     parser.add_argument('--title', default='Fracture area against inlet '
                         'pressure')
     args = parser.parse_args()
+    if args.sigma and len(args.sigma) != len(args.sweep):
+        sys.exit('--sigma given %d times for %d --sweep tables: give one '
+                 'per table or none' % (len(args.sigma), len(args.sweep)))
+    if any(not v > 0 for v in args.sigma):
+        sys.exit('--sigma must be > 0 Pa, got %s' % args.sigma)
     if args.label and len(args.label) != len(args.sweep):
         sys.exit('--label given %d times for %d --sweep tables: give one '
                  'per table or none' % (len(args.label), len(args.sweep)))
@@ -76,16 +86,20 @@ def main():
     markers = 'osd^v<>'
     for k, (path, label) in enumerate(zip(args.sweep, labels)):
         rows = read_sweep(path)
-        p = [float(r['p_i[Pa]']) / 1e3 for r in rows]
-        growth = [float(r['growth_max[mm^2]']) for r in rows]
+        # p_i = 0 (a control run without flow) has no place on a log axis.
+        shown = [r for r in rows if float(r['p_i[Pa]']) > 0]
+        scale = args.sigma[k] if args.sigma else 1e3
+        p = [float(r['p_i[Pa]']) / scale for r in shown]
+        growth = [float(r['growth_max[mm^2]']) for r in shown]
         line, = ax.plot(p, growth, marker=markers[k % len(markers)],
                         label=label)
         low, high = bracket(rows)
-        if low is not None and high is not None and low < high:
-            ax.axvspan(low / 1e3, high / 1e3, color=line.get_color(),
+        if low is not None and high is not None and 0 < low < high:
+            ax.axvspan(low / scale, high / scale, color=line.get_color(),
                        alpha=0.15)
-            ax.text((low * high) ** 0.5 / 1e3, 0.05 + 0.12 * k,
-                    'p_c %g-%g kPa' % (low / 1e3, high / 1e3),
+            ax.text((low * high) ** 0.5 / scale, 0.05 + 0.12 * k,
+                    ('p_c / sigma %.2g-%.2g' if args.sigma else
+                     'p_c %g-%g kPa') % (low / scale, high / scale),
                     transform=ax.get_xaxis_transform(), ha='center',
                     color=line.get_color(), fontsize=8)
         print('%s: %d pressures, critical bracket %s-%s Pa'
@@ -96,11 +110,12 @@ def main():
     if args.threshold is not None:
         ax.axhline(args.threshold, color='k', ls='--', lw=0.8,
                    label='fracture threshold (%g mm^2)' % args.threshold)
-    ax.set_xlabel('inlet pressure p_i [kPa]')
+    ax.set_xlabel('inlet pressure over confining pressure, p_i / sigma'
+                  if args.sigma else 'inlet pressure p_i [kPa]')
     ax.set_ylabel('growth of the fracture area [mm^2]')
     ax.set_title(args.title, fontsize=10)
     ax.grid(True, which='both', alpha=0.3)
-    ax.legend(fontsize=8, loc='upper left')
+    ax.legend(fontsize=8, loc='best')
     fig.tight_layout()
     fig.savefig(args.out, dpi=120)
     print('wrote', args.out)
