@@ -68,6 +68,20 @@ namespace
       }
     return 0.5 * (a + b);
   }
+
+  /// Closed-form overlap of a grain of radius R resting on a wall with
+  /// cohesion @p k and no gravity: Hertz force = k pi (2 R delta - delta^2).
+  double
+  wall_balance_overlap(const dem::DEMParameters &p, const double k)
+  {
+    const double y_eff = p.material.effective_youngs_modulus();
+    return bisect(
+      [&](const double d) {
+        return 4. / 3. * y_eff * std::sqrt(R) * std::pow(d, 1.5) -
+               k * M_PI * (2 * R * d - d * d);
+      },
+      1e-3 * R, R);
+  }
 } // namespace
 
 
@@ -112,14 +126,8 @@ main(int argc, char **argv)
   {
     dem::DEMParameters p = material();
     p.material.cohesion_energy_density = k;
-    p.walls.list = "plane 0 0 0 0 0 1 fixed";
-    const double y_eff = p.material.effective_youngs_modulus();
-    const double delta = bisect(
-      [&](const double d) {
-        return 4. / 3. * y_eff * std::sqrt(R) * std::pow(d, 1.5) -
-               k * M_PI * (2 * R * d - d * d);
-      },
-      1e-3 * R, R);
+    p.walls.list       = "plane 0 0 0 0 0 1 fixed";
+    const double delta = wall_balance_overlap(p, k);
     std::vector<dem::Grain<3>> g(1);
     g[0].center = Point<3>(0, 0, R - 1e-3 * R);
     g[0].radius = R;
@@ -149,13 +157,7 @@ main(int argc, char **argv)
       const double found = R - out[0].center[2];
       if (wall_k > 0)
         {
-          const double y_eff = p.material.effective_youngs_modulus();
-          const double delta = bisect(
-            [&](const double d) {
-              return 4. / 3. * y_eff * std::sqrt(R) * std::pow(d, 1.5) -
-                     wall_k * M_PI * (2 * R * d - d * d);
-            },
-            1e-3 * R, R);
+          const double delta = wall_balance_overlap(p, wall_k);
           deallog << "grain on a wall, wall cohesion 1e5, grains 1e6: "
                   << "delta / R = " << std::setprecision(4) << found / R
                   << ", closed form (wall's k) " << delta / R
