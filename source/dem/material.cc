@@ -65,27 +65,15 @@ namespace softsand
       wall_cohesion_energy_density.reset();
       if (wall_cohesion_entry != "same as grains")
         {
-          const auto invalid = [&]() {
+          // The entry's pattern is Anything (it also takes a keyword), so
+          // the number is checked here with the pattern of the one above.
+          if (!Patterns::Double(0).match(wall_cohesion_entry))
             base::throw_invalid_parameter(
               "dem/material/wall cohesion energy density",
               wall_cohesion_entry,
               "it must be a number >= 0 (J/m^3) or 'same as grains'");
-          };
-          std::size_t parsed = 0;
-          double      value  = -1;
-          try
-            {
-              value = std::stod(wall_cohesion_entry, &parsed);
-            }
-          catch (const std::exception &)
-            {
-              invalid();
-            }
-          if (wall_cohesion_entry.find_first_not_of(" \t", parsed) !=
-                std::string::npos ||
-              !(value >= 0) || !std::isfinite(value))
-            invalid();
-          wall_cohesion_energy_density = value;
+          wall_cohesion_energy_density =
+            Utilities::string_to_double(wall_cohesion_entry);
         }
       const auto positive = [&](const std::string &entry, const double v) {
         if (!(v > 0))
