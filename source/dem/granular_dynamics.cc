@@ -331,10 +331,11 @@ namespace softsand
       inv_mass.resize(total);
       inv_inertia.resize(total);
       n_contacts.assign(total, 0);
-      // The grains may come in a new order: the virial is that of the next
-      // force computation (a restart reports zero stress until its first
-      // step).
-      grain_virial.assign(n_local, Tensor<2, 3>());
+      // The grains may come in a new order: the contact stress is that of
+      // the next force computation (a restart reports zero stress until its
+      // first step).
+      pair_force.clear();
+      wall_force.clear();
 
       const auto read = [&](const auto &particle, const unsigned int i) {
         const ArrayView<const double> p = particle.get_properties();
@@ -540,6 +541,9 @@ namespace softsand
           // outer loop), so memory order follows the grains.
         }
       pair_history.assign(pairs.size(), ContactHistory());
+      // No forces for the new lists until the next compute_forces().
+      pair_force.clear();
+      wall_force.clear();
       pair_r_eff.resize(pairs.size());
       pair_m_eff.resize(pairs.size());
       for (unsigned int k = 0; k < pairs.size(); ++k)
@@ -656,7 +660,9 @@ namespace softsand
           n_contacts[i]     = 0;
           grain_damping[i]  = fluid_response[i];
         }
-      grain_virial.assign(n_local, Tensor<2, 3>());
+      pair_force.resize(pairs.size());
+      wall_force.resize(wall_pairs.size());
+      wall_branch.resize(wall_pairs.size());
       const bool cohesive = parameters.material.cohesion_energy_density > 0;
       const bool wall_cohesive = parameters.material.wall_cohesion() > 0;
 
@@ -683,6 +689,7 @@ namespace softsand
                     damping_kick[j] -= kick;
                 }
               h.clear();
+              pair_force[k] = Tensor<1, 3>();
               continue;
             }
           const double       dist  = std::sqrt(d2);
@@ -712,14 +719,12 @@ namespace softsand
           grain_stiffness[j] += stiffness;
           grain_damping[i] += damping;
           grain_damping[j] += damping;
-          // n points from j to i: the contact point is at -li n from i's
-          // centre and at +lj n from j's, where the force is -force.
+          pair_force[k] = force;
           if (i < n_local)
             {
               f[i] += force;
               t[i] += torque_i;
               damping_kick[i] += impulse * n;
-              grain_virial[i] -= li * outer_product(force, n);
               ++n_contacts[i];
             }
           if (j < n_local)
@@ -727,7 +732,6 @@ namespace softsand
               f[j] -= force;
               t[j] += torque_j;
               damping_kick[j] -= impulse * n;
-              grain_virial[j] -= lj * outer_product(force, n);
               ++n_contacts[j];
             }
         }
@@ -749,6 +753,7 @@ namespace softsand
               if (h.damping_potential > 0)
                 damping_kick[i] += wall_law.separation_impulse(h, dt) * n;
               h.clear();
+              wall_force[k] = Tensor<1, 3>();
               continue;
             }
           const double       li    = radius[i] - 0.5 * delta;
@@ -768,7 +773,8 @@ namespace softsand
           f[i] += force;
           t[i] += torque_i;
           // n points from the wall into the grain.
-          grain_virial[i] -= li * outer_product(force, n);
+          wall_force[k]  = force;
+          wall_branch[k] = li * n;
           wall.force -= force;
           wall.normal_force += force * n;
         }
@@ -931,11 +937,8 @@ namespace softsand
       GranularStatistics s;
       double sums[7] = {0, 0, 0, 0, 0, 0, 0}; // ke, overlap, count, speed, volume, n, contacts
       double max_overlap = 0, max_speed = 0;
-      Tensor<2, 3> virial;
       for (unsigned int i = 0; i < n_local; ++i)
         {
-          if (probe.point_inside(x[i]))
-            virial += grain_virial[i];
           const double inertia = 1. / inv_inertia[i];
           sums[0] += 0.5 * mass[i] * v[i].norm_square() +
                      0.5 * inertia * w[i].norm_square();
@@ -982,11 +985,51 @@ namespace softsand
       s.mean_speed     = s.n_grains > 0 ? sums[3] / s.n_grains : 0;
       s.max_speed      = Utilities::MPI::max(max_speed, comm);
       s.packing_fraction = sums[4] / probe.volume();
+      Tensor<2, 3> virial = contact_virial(probe);
       virial = Utilities::MPI::sum(virial, comm);
       // Compression pushes the grain away from the contact: force and
       // branch vector opposed, hence the minus sign.
       s.contact_stress = -symmetrize(virial) / probe.volume();
       return s;
+    }
+
+
+    Tensor<2, 3>
+    GranularDynamics::contact_virial(const BoundingBox<3> &probe) const
+    {
+      // Sum over the contacts of the local grains inside the probe of
+      // branch vector (x) force, from the forces of the last
+      // compute_forces(). The grains have not moved since, so each pair's
+      // branch vectors are recomputed as compute_forces() had them: n points
+      // from j to i, the contact point is at -li n from i's centre and at
+      // +lj n from j's, where the force is -force.
+      Tensor<2, 3> virial;
+      if (pair_force.size() == pairs.size())
+        for (unsigned int k = 0; k < pairs.size(); ++k)
+          {
+            const Tensor<1, 3> &force = pair_force[k];
+            if (force.norm_square() == 0)
+              continue;
+            const unsigned int i = pairs[k].first, j = pairs[k].second;
+            const bool in_i = i < n_local && probe.point_inside(x[i]);
+            const bool in_j = j < n_local && probe.point_inside(x[j]);
+            if (!in_i && !in_j)
+              continue;
+            const Tensor<1, 3> d     = x[i] - x[j];
+            const double       dist  = d.norm();
+            const Tensor<1, 3> n     = (1. / dist) * d;
+            const double       delta = radius[i] + radius[j] - dist;
+            if (in_i)
+              virial -= (radius[i] - 0.5 * delta) * outer_product(force, n);
+            if (in_j)
+              virial -= (radius[j] - 0.5 * delta) * outer_product(force, n);
+          }
+      if (wall_force.size() == wall_pairs.size())
+        for (unsigned int k = 0; k < wall_pairs.size(); ++k)
+          if (probe.point_inside(x[wall_pairs[k].first]))
+            // The branch is li n, n from the wall into the grain.
+            virial -= outer_product(wall_force[k], wall_branch[k]);
+      return virial;
     }
 
 

@@ -237,6 +237,10 @@ namespace softsand
       void
       compute_forces(const std::vector<Tensor<1, 3>> &v_slide,
                      const std::vector<Tensor<1, 3>> &w_slide);
+      /// Love-Weber sum over the contacts of the local grains in probe, from
+      /// the forces of the last compute_forces().
+      Tensor<2, 3>
+      contact_virial(const BoundingBox<3> &probe) const;
 
       const DEMParameters &parameters;
       MPI_Comm             comm;
@@ -274,10 +278,13 @@ namespace softsand
       std::vector<Tensor<1, 3>>          damping_kick;
       std::vector<double>                radius, mass, inv_mass, inv_inertia;
       std::vector<unsigned int>          n_contacts;
-      /// Per local grain, sum over its contacts (grains and walls) of
-      /// force (x) branch vector from the last compute_forces(): the
-      /// Love-Weber stress of statistics().
-      std::vector<Tensor<2, 3>>          grain_virial;
+      /// The contact forces of the last compute_forces(), from which
+      /// statistics() sums the Love-Weber stress only when asked: force on
+      /// grain i of each pair (zero when open; empty after a list build that
+      /// no force computation followed), and force on the grain and branch
+      /// vector of each grain-wall contact (the walls move after the forces,
+      /// so the branch is kept, not recomputed).
+      std::vector<Tensor<1, 3>>          pair_force, wall_force, wall_branch;
       /// Sum of the contact stiffnesses and dampings on each grain.
       std::vector<double>                grain_stiffness, grain_damping;
       /// Local max over grains of sqrt(stiffness / m) dt and damping dt / m.
