@@ -145,6 +145,10 @@ def main():
         sys.exit("--repeat must be >= 1, got %d" % args.repeat)
     if not args.end_time > 0:
         sys.exit("--end-time must be > 0 s, got %g" % args.end_time)
+    if not os.path.isfile(os.path.join(BUILD, "softsand")):
+        sys.exit("no %s/softsand: build first (scripts/setup.sh)" % BUILD)
+    if not os.path.isfile(args.prm):
+        sys.exit("--prm %s: no such file" % args.prm)
     os.makedirs(args.workdir, exist_ok=True)
     prm = os.path.join(args.workdir, "scene.prm")
     with open(args.prm) as f:
