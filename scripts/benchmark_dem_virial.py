@@ -170,8 +170,8 @@ def main():
     rates = {k: [] for k in libs}
     for r in range(args.repeat):
         for name, lib in libs.items():
-            rate = run(prm, lib, os.path.join(args.workdir, "run-%s-%d.log" %
-                                              (name.split()[0], r)))
+            rate = run(prm, lib, os.path.join(args.workdir,
+                                            "run-%s-%d.log" % (name, r)))
             rates[name].append(rate)
             # Proof that each run loaded the library it was meant to: only
             # the copy without the bookkeeping writes a zero contact stress.

@@ -331,11 +331,6 @@ namespace softsand
       inv_mass.resize(total);
       inv_inertia.resize(total);
       n_contacts.assign(total, 0);
-      // The grains may come in a new order: the contact stress is that of
-      // the next force computation (a restart reports zero stress until its
-      // first step).
-      pair_force.clear();
-      wall_force.clear();
 
       const auto read = [&](const auto &particle, const unsigned int i) {
         const ArrayView<const double> p = particle.get_properties();
@@ -541,7 +536,9 @@ namespace softsand
           // outer loop), so memory order follows the grains.
         }
       pair_history.assign(pairs.size(), ContactHistory());
-      // No forces for the new lists until the next compute_forces().
+      // No forces for the new lists (the grains may come in a new order)
+      // until the next compute_forces(): a restart reports zero contact
+      // stress until its first step.
       pair_force.clear();
       wall_force.clear();
       pair_r_eff.resize(pairs.size());
