@@ -31,10 +31,13 @@ root.
 
 Developed fractures (--developed): each injection runs until its fracture
 reaches --reach-fraction (0.8) of the scene's fracture-map outer radius,
-its area grows by less than one pixel over --stall-steps (40) coupling
-steps, or --end-time (default 0.2 s with --developed), whichever comes
-first (postprocessing/fracture area/stop at reach and stop when stalled
-over). A window of 20 steps stopped a small-scene run at 5.7 kPa 3.5 ms
+its area grows by less than one pixel over a window of at least
+--stall-steps (40) coupling steps and --stall-time (0.01 s) of simulated
+time, or --end-time (default 0.2 s with --developed), whichever comes
+first (postprocessing/fracture area/stop at reach, stop when stalled over
+and stop when stalled for). Before stop 50 the window was the steps alone:
+40 steps halved to the Courant limit spanned only 2.5 ms
+(--stall-time 0 gives that rule back). A window of 20 steps stopped a small-scene run at 5.7 kPa 3.5 ms
 before its growth began (doc/hele_shaw.md). Every run writes a checkpoint every --checkpoint-interval coupling
 steps (default 5 with --developed) and its screen output to
 <workdir>/p<p_i>.log. Running the same command again resumes (with or
@@ -136,7 +139,9 @@ def run_one(args, text, p):
             ('postprocessing/fracture area/stop at reach',
              '%g' % (args.reach_fraction * outer_radius(text))),
             ('postprocessing/fracture area/stop when stalled over',
-             '%d' % args.stall_steps)]
+             '%d' % args.stall_steps),
+            ('postprocessing/fracture area/stop when stalled for',
+             '%g' % args.stall_time)]
     if args.checkpoint_interval:
         overrides.append(('simulation control/checkpoint interval',
                           '%d' % args.checkpoint_interval))
@@ -275,6 +280,9 @@ def main():
                         'above); resumable')
     a.add_argument('--reach-fraction', type=float, default=0.8)
     a.add_argument('--stall-steps', type=int, default=40)
+    a.add_argument('--stall-time', type=float, default=0.01,
+                   help='simulated time the stall window spans at least '
+                        '(s; 0: the steps alone)')
     a.add_argument('--checkpoint-interval', type=int, default=None,
                    help='coupling steps between checkpoints (default 5 with '
                         '--developed, else 0: none)')
@@ -283,6 +291,12 @@ def main():
         args.checkpoint_interval = 5 if args.developed else 0
     if args.developed and args.end_time is None:
         args.end_time = 0.2
+    if args.stall_steps < 0 or not args.stall_time >= 0:
+        sys.exit('--stall-steps and --stall-time must be >= 0, got %d and %g'
+                 % (args.stall_steps, args.stall_time))
+    if args.developed and args.stall_steps == 0 and args.stall_time == 0:
+        sys.exit('--developed needs a stall window: --stall-steps or '
+                 '--stall-time above 0')
     if not 0 < args.reach_fraction < 1:
         sys.exit('--reach-fraction must lie in (0, 1), got %g'
                  % args.reach_fraction)

@@ -21,7 +21,9 @@
 //    the reach stop holds at 2.9 mm and not at 3.0 mm; the stall stop over
 //    2 steps holds at the third check of an unchanged map and not before,
 //    and not when the channel is lengthened by 2 pixels between the second
-//    and third checks (the area grows by 4 pixels).
+//    and third checks (the area grows by 4 pixels). Over 2 steps and 3 ms
+//    with checks 1 ms apart it holds at the fourth check, also in a copy
+//    loaded from the window saved after the second check (a restart).
 
 #include <softsand/postprocess/fracture_area.h>
 #include <softsand/postprocess/fracture_development.h>
@@ -30,6 +32,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 using namespace softsand;
 
@@ -162,7 +165,7 @@ main(int argc, char **argv)
         postprocess::FractureDevelopment development(
           p, inlet, lower, upper, MPI_COMM_WORLD);
         deallog << "stop at reach " << stop * 1e3
-                << " mm: " << says(development.check(grains)) << std::endl;
+                << " mm: " << says(development.check(grains, 0)) << std::endl;
       }
     p.stop_reach       = 0;
     p.stop_stall_steps = 2;
@@ -171,8 +174,31 @@ main(int argc, char **argv)
         p, inlet, lower, upper, MPI_COMM_WORLD);
       for (unsigned int k = 1; k <= 3; ++k)
         deallog << "unchanged map, check " << k << ", stalled: "
-                << says(development.check(grains)) << std::endl;
+                << says(development.check(grains, 1e-3 * k)) << std::endl;
     }
+    // The window over 2 steps and 3 ms, checks 1 ms apart: the time span
+    // decides (check 4). A copy made from the window saved after check 2,
+    // as a restart reads it, stops at the same check.
+    p.stop_stall_time = 3e-3;
+    {
+      postprocess::FractureDevelopment development(
+        p, inlet, lower, upper, MPI_COMM_WORLD);
+      std::stringstream saved;
+      for (unsigned int k = 1; k <= 4; ++k)
+        {
+          deallog << "2 steps and 3 ms, check " << k << ", stalled: "
+                  << says(development.check(grains, 1e-3 * k)) << std::endl;
+          if (k == 2)
+            development.save(saved);
+        }
+      postprocess::FractureDevelopment restarted(
+        p, inlet, lower, upper, MPI_COMM_WORLD);
+      restarted.load(saved);
+      for (unsigned int k = 3; k <= 4; ++k)
+        deallog << "restarted after check 2, check " << k << ", stalled: "
+                << says(restarted.check(grains, 1e-3 * k)) << std::endl;
+    }
+    p.stop_stall_time = 0;
     {
       postprocess::FractureDevelopment development(
         p, inlet, lower, upper, MPI_COMM_WORLD);
@@ -193,7 +219,7 @@ main(int argc, char **argv)
                                          }),
                           growing.end());
           deallog << "growing map, check " << k << ", stalled: "
-                  << says(development.check(growing)) << std::endl;
+                  << says(development.check(growing, 1e-3 * k)) << std::endl;
         }
     }
   }

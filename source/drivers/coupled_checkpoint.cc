@@ -1,7 +1,8 @@
 // Checkpoint and restart of the coupled scene: the fluid mesh and solution
 // (deal.II serialization) and the DEM state in checkpoint-STEP.*, and
 // checkpoint.info with the step, where the mesh was last adapted and the
-// held-force history (files and their order: checkpoint_files.h).
+// held-force history, the last step's length and the fracture's stall
+// window (files and their order: checkpoint_files.h).
 
 #include <softsand/drivers/checkpoint_files.h>
 #include <softsand/drivers/coupled_scene.h>
@@ -14,6 +15,12 @@ namespace softsand
 {
   namespace drivers
   {
+    namespace
+    {
+      const std::string stall_window_tag = "fracture_stall_window";
+    }
+
+
     void
     CoupledScene::write_checkpoint()
     {
@@ -44,6 +51,13 @@ namespace softsand
           held_force->save(info);
           // The last step's length: BDF2 goes on only with equal steps.
           info << fluid.solver().last_transient_step() << '\n';
+          // The fracture's stall window: the restarted run must stop where
+          // the uninterrupted one would.
+          if (fracture_development)
+            {
+              info << stall_window_tag << ' ';
+              fracture_development->save(info);
+            }
         }
       commit_checkpoint(dir, step, "coupled", info.str(), mpi_communicator);
     }
@@ -66,6 +80,16 @@ namespace softsand
       double last_step = 0; // absent from older checkpoints
       if (!(info >> last_step))
         last_step = 0;
+      // Absent from older checkpoints and from runs without the stall stop:
+      // the window then starts anew.
+      std::string tag;
+      if (info >> tag && tag == stall_window_tag && fracture_development)
+        fracture_development->load(info);
+      else if (fracture_development &&
+               parameters.fracture_area.stall_stop_set())
+        console.pcout << "softsand coupled: the checkpoint holds no fracture "
+                         "stall window; the stall stop's window starts anew."
+                      << std::endl;
 
       // The coarse mesh as at the start, then the saved refinement.
       fluid.make_mesh(false, true);

@@ -127,6 +127,15 @@ namespace softsand
       if (!sc.restart)
         update_grains_from_dem();
       fluid.create_solver(true);
+      // Before the checkpoint is read: it holds the stall window.
+      if (p.fracture_area.enabled && p.fracture_area.stops_set())
+        fracture_development =
+          std::make_unique<postprocess::FractureDevelopment>(
+            p.fracture_area,
+            p.boundary_conditions.inlet_region(),
+            p.mesh.lower_corner,
+            p.mesh.upper_corner,
+            mpi_communicator);
 
       if (sc.restart)
         read_checkpoint();
@@ -182,14 +191,6 @@ namespace softsand
       warn_about_fluid_model(p, !fluid.grains().empty(), mpi_communicator);
       warn_about_response_time();
       warn_about_penalty_coupling();
-      if (p.fracture_area.enabled && p.fracture_area.stops_set())
-        fracture_development =
-          std::make_unique<postprocess::FractureDevelopment>(
-            p.fracture_area,
-            p.boundary_conditions.inlet_region(),
-            p.mesh.lower_corner,
-            p.mesh.upper_corner,
-            mpi_communicator);
     }
 
 
@@ -353,7 +354,7 @@ namespace softsand
     {
       if (!fracture_development)
         return;
-      developed_fracture = fracture_development->check(fluid.grains());
+      developed_fracture = fracture_development->check(fluid.grains(), time);
       if (!developed_fracture.empty())
         console.pcout << "Developed fracture at step " << step << ", t = "
                       << time << " s: " << developed_fracture

@@ -60,8 +60,19 @@ namespace softsand
                         Patterns::Integer(0),
                         "Coupled runs: end the run (a developed fracture) "
                         "once the fracture area grew by less than one pixel "
-                        "over this many coupling steps (0: never). After a "
-                        "restart the count starts anew.");
+                        "over this many coupling steps (0: no count of "
+                        "steps). The areas of the window are kept in the "
+                        "checkpoint: a restarted run stops where the "
+                        "uninterrupted one would.");
+      prm.declare_entry("stop when stalled for",
+                        "0",
+                        Patterns::Double(0),
+                        "Coupled runs: end the run (a developed fracture) "
+                        "once the fracture area grew by less than one pixel "
+                        "over this much simulated time (s; 0: no time "
+                        "span). With 'stop when stalled over' also set, the "
+                        "window spans both the steps and the time (40 steps "
+                        "halved to the Courant limit can be 2.5 ms).");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -79,12 +90,15 @@ namespace softsand
       outer_radius   = prm.get_double("outer radius");
       stop_reach       = prm.get_double("stop at reach");
       stop_stall_steps = prm.get_integer("stop when stalled over");
+      stop_stall_time  = prm.get_double("stop when stalled for");
+      const std::string stop_name = stop_reach > 0 ? "stop at reach" :
+                                    stop_stall_steps > 0 ?
+                                                     "stop when stalled over" :
+                                                     "stop when stalled for";
       if (!enabled && stops_set())
         base::throw_invalid_parameter(
-          "postprocessing/fracture area/" +
-            std::string(stop_reach > 0 ? "stop at reach" :
-                                         "stop when stalled over"),
-          prm.get(stop_reach > 0 ? "stop at reach" : "stop when stalled over"),
+          "postprocessing/fracture area/" + stop_name,
+          prm.get(stop_name),
           "0 unless 'postprocessing/fracture area/enabled = true' (the "
           "stop is judged on the fracture map)");
       if (stop_reach > 0 && outer_radius > 0 && stop_reach >= outer_radius)
