@@ -26,6 +26,31 @@ namespace softsand
         return m;
       }
 
+      /// Where two overlapping grains touch: n the unit normal from j's
+      /// centre to i's, delta the overlap, li and lj the distances from
+      /// the centres to the contact point (i's at -li n, j's at +lj n).
+      /// The one definition for the forces and for the contact stress.
+      struct PairGeometry
+      {
+        Tensor<1, 3> n;
+        double       delta, li, lj;
+      };
+
+      /// @p d = x_i - x_j, @p d2 its square norm.
+      inline PairGeometry
+      pair_geometry(const Tensor<1, 3> &d,
+                    const double        d2,
+                    const double        radius_i,
+                    const double        radius_j)
+      {
+        const double dist  = std::sqrt(d2);
+        const double delta = radius_i + radius_j - dist;
+        return {(1. / dist) * d,
+                delta,
+                radius_i - 0.5 * delta,
+                radius_j - 0.5 * delta};
+      }
+
       inline std::uint64_t
       pair_key(const types::particle_index a, const types::particle_index b)
       {
@@ -689,11 +714,8 @@ namespace softsand
               pair_force[k] = Tensor<1, 3>();
               continue;
             }
-          const double       dist  = std::sqrt(d2);
-          const Tensor<1, 3> n     = (1. / dist) * d;
-          const double       delta = rs - dist;
-          const double       li    = radius[i] - 0.5 * delta;
-          const double       lj    = radius[j] - 0.5 * delta;
+          const auto [n, delta, li, lj] =
+            pair_geometry(d, d2, radius[i], radius[j]);
           const double       r_eff = pair_r_eff[k];
           const double       m_eff = pair_m_eff[k];
           const Tensor<1, 3> v_rel =
@@ -997,9 +1019,8 @@ namespace softsand
       // Sum over the contacts of the local grains inside the probe of
       // branch vector (x) force, from the forces of the last
       // compute_forces(). The grains have not moved since, so each pair's
-      // branch vectors are recomputed as compute_forces() had them: n points
-      // from j to i, the contact point is at -li n from i's centre and at
-      // +lj n from j's, where the force is -force.
+      // branch vectors are recomputed as compute_forces() had them
+      // (pair_geometry); the force on j is -force.
       Tensor<2, 3> virial;
       if (pair_force.size() == pairs.size())
         for (unsigned int k = 0; k < pairs.size(); ++k)
@@ -1012,14 +1033,13 @@ namespace softsand
             const bool in_j = j < n_local && probe.point_inside(x[j]);
             if (!in_i && !in_j)
               continue;
-            const Tensor<1, 3> d     = x[i] - x[j];
-            const double       dist  = d.norm();
-            const Tensor<1, 3> n     = (1. / dist) * d;
-            const double       delta = radius[i] + radius[j] - dist;
+            const Tensor<1, 3> d = x[i] - x[j];
+            const PairGeometry c =
+              pair_geometry(d, d.norm_square(), radius[i], radius[j]);
             if (in_i)
-              virial -= (radius[i] - 0.5 * delta) * outer_product(force, n);
+              virial -= c.li * outer_product(force, c.n);
             if (in_j)
-              virial -= (radius[j] - 0.5 * delta) * outer_product(force, n);
+              virial -= c.lj * outer_product(force, c.n);
           }
       if (wall_force.size() == wall_pairs.size())
         for (unsigned int k = 0; k < wall_pairs.size(); ++k)
