@@ -37,9 +37,11 @@ time, or --end-time (default 0.2 s with --developed), whichever comes
 first (postprocessing/fracture area/stop at reach, stop when stalled over
 and stop when stalled for). Before stop 50 the window was the steps alone:
 40 steps halved to the Courant limit spanned only 2.5 ms
-(--stall-time 0 gives that rule back). A window of 20 steps stopped a small-scene run at 5.7 kPa 3.5 ms
-before its growth began (doc/hele_shaw.md). Every run writes a checkpoint every --checkpoint-interval coupling
-steps (default 5 with --developed) and its screen output to
+(--stall-time 0 gives that rule back). A window of 20 steps stopped a
+small-scene run at 5.7 kPa 3.5 ms before its growth began
+(doc/hele_shaw.md). Every run writes a checkpoint every
+--checkpoint-interval coupling steps (default 5 with --developed) and its
+screen output to
 <workdir>/p<p_i>.log. Running the same command again resumes (with or
 without --developed): a finished pressure (<workdir>/p<p_i>/sweep_done.txt;
 delete it to run that pressure again) is only tabulated, an unfinished
