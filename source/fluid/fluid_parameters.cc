@@ -340,6 +340,24 @@ namespace softsand
         "Q1 matrices (with the least squares commutator, peak memory 933 "
         "instead of 1,479 MB on the 2-cell Hele-Shaw cell, doc/solver_study.md). Solves with convection "
         "(Navier-Stokes, transient) and grad-div are matrix based.");
+      prm.declare_entry(
+        "transient solver",
+        "matrix based",
+        Patterns::Selection("matrix free|matrix based"),
+        "The solver of the transient model's time steps (Navier-Stokes with "
+        "BDF, the coupled injections). matrix based: the system assembled "
+        "into Trilinos matrices at every step, velocity block by ML AMG with "
+        "ILU smoothing, the least-squares commutator (above); matrix free: "
+        "the same discrete step with the Q2-Q1 operator applied cell by "
+        "cell on a MatrixFree object kept while the mesh is, the grains' "
+        "rigid nodes as identity rows of the step, cells whose velocity "
+        "nodes are all imposed skipped, FGMRES preconditioned by "
+        "Jacobi-GMRES on the mass-dominated velocity block and CG + AMG on "
+        "X = B D^-1 B^T + C (B assembled once per mesh); the fluid force on "
+        "the grains from the residual of their rows, no second assembly. "
+        "Less memory and setup, more Krylov work: which is faster depends "
+        "on the scene and the step (doc/solver_study.md, \"The transient "
+        "matrix-free step\"). Not with grad div.");
       prm.declare_entry("multigrid smoother degree",
                         "4",
                         Patterns::Integer(1, 20),
@@ -425,6 +443,16 @@ namespace softsand
       linear_solver            = prm.get("linear solver") == "matrix free" ?
                                    LinearSolver::matrix_free :
                                    LinearSolver::matrix_based;
+      transient_solver         = prm.get("transient solver") == "matrix free" ?
+                                   LinearSolver::matrix_free :
+                                   LinearSolver::matrix_based;
+      if (transient_solver == LinearSolver::matrix_free &&
+          (grad_div > 0 || grad_div_cell_factor > 0))
+        base::throw_invalid_parameter(
+          "fluid solver/transient solver",
+          prm.get("transient solver"),
+          "the matrix-free transient step has no grad-div term: set 'grad "
+          "div' and 'grad div cell factor' to 0 or use 'matrix based'");
       smoother_degree          = prm.get_integer("multigrid smoother degree");
       smoothing_range          = prm.get_double("multigrid smoothing range");
       multigrid_geometric_levels =

@@ -219,6 +219,109 @@ namespace softsand
       constrained_pressure =
         constrained_local_rows(*data->get_vector_partitioner(1),
                                pressure_constraints);
+      velocity_extra = nullptr;
+      skip_cell      = nullptr;
+      step_velocity.clear();
+      step_pressure.clear();
+    }
+
+
+    template <int dim>
+    void
+    StokesOperator<dim>::set_step_data(
+      const std::vector<unsigned char>     *skip,
+      const std::vector<unsigned int>      &velocity_rows,
+      const std::vector<unsigned int>      &pressure_rows,
+      const TrilinosWrappers::SparseMatrix *extra)
+    {
+      skip_cell      = skip;
+      step_velocity  = velocity_rows;
+      step_pressure  = pressure_rows;
+      velocity_extra = extra;
+    }
+
+
+    template <int dim>
+    void
+    StokesOperator<dim>::zero_constrained_velocity_rows(VectorType &v) const
+    {
+      for (const unsigned int i : constrained_velocity)
+        v.local_element(i) = 0;
+      for (const unsigned int i : step_velocity)
+        v.local_element(i) = 0;
+    }
+
+
+    template <int dim>
+    void
+    StokesOperator<dim>::copy_constrained_pressure_rows(
+      VectorType       &dst,
+      const VectorType &src) const
+    {
+      for (const unsigned int i : constrained_pressure)
+        dst.local_element(i) = src.local_element(i);
+      for (const unsigned int i : step_pressure)
+        dst.local_element(i) = src.local_element(i);
+    }
+
+
+    template <int dim>
+    void
+    StokesOperator<dim>::zero_constrained_rows(BlockVectorType &v) const
+    {
+      zero_constrained_velocity_rows(v.block(0));
+      for (const unsigned int i : constrained_pressure)
+        v.block(1).local_element(i) = 0;
+      for (const unsigned int i : step_pressure)
+        v.block(1).local_element(i) = 0;
+    }
+
+
+    template <int dim>
+    void
+    StokesOperator<dim>::local_velocity(
+      const MatrixFree<dim, double>               &data,
+      VectorType                                  &dst,
+      const VectorType                            &src,
+      const std::pair<unsigned int, unsigned int> &range) const
+    {
+      typename VelocityOperator<dim, 2, double>::Evaluation u(data,
+                                                              range,
+                                                              0,
+                                                              0);
+      for (unsigned int cell = range.first; cell < range.second; ++cell)
+        {
+          if (skip_cell != nullptr && (*skip_cell)[cell])
+            continue;
+          u.reinit(cell);
+          u.gather_evaluate(src,
+                            EvaluationFlags::values |
+                              EvaluationFlags::gradients);
+          velocity->do_quadrature(u);
+          u.integrate_scatter(EvaluationFlags::values |
+                                EvaluationFlags::gradients,
+                              dst);
+        }
+    }
+
+
+    template <int dim>
+    void
+    StokesOperator<dim>::vmult_velocity(VectorType       &dst,
+                                        const VectorType &src) const
+    {
+      matrix_free->cell_loop(
+        &StokesOperator::local_velocity, this, dst, src, true);
+      if (velocity_extra != nullptr)
+        {
+          velocity_tmp.reinit(dst, true);
+          velocity_extra->vmult(velocity_tmp, src);
+          dst += velocity_tmp;
+        }
+      for (const unsigned int i : constrained_velocity)
+        dst.local_element(i) = src.local_element(i);
+      for (const unsigned int i : step_velocity)
+        dst.local_element(i) = src.local_element(i);
     }
 
 
@@ -238,6 +341,8 @@ namespace softsand
       FEEvaluation<dim, 1, 3, 1, double> p(data, range, 1, 0);
       for (unsigned int cell = range.first; cell < range.second; ++cell)
         {
+          if (!plain && skip_cell != nullptr && (*skip_cell)[cell])
+            continue;
           u.reinit(cell);
           p.reinit(cell);
           if (plain)
@@ -297,9 +402,19 @@ namespace softsand
           pressure_block->vmult(pressure_tmp, src.block(1));
           dst.block(1) += pressure_tmp;
         }
+      if (velocity_extra != nullptr)
+        {
+          velocity_tmp.reinit(dst.block(0), true);
+          velocity_extra->vmult(velocity_tmp, src.block(0));
+          dst.block(0) += velocity_tmp;
+        }
       for (const unsigned int i : constrained_velocity)
         dst.block(0).local_element(i) = src.block(0).local_element(i);
       for (const unsigned int i : constrained_pressure)
+        dst.block(1).local_element(i) = src.block(1).local_element(i);
+      for (const unsigned int i : step_velocity)
+        dst.block(0).local_element(i) = src.block(0).local_element(i);
+      for (const unsigned int i : step_pressure)
         dst.block(1).local_element(i) = src.block(1).local_element(i);
     }
 
@@ -329,6 +444,9 @@ namespace softsand
       FEEvaluation<dim, 1, 3, 1, double> p(data, range, 1, 0);
       for (unsigned int cell = range.first; cell < range.second; ++cell)
         {
+          // All velocity nodes imposed: nothing reaches a free row.
+          if (skip_cell != nullptr && (*skip_cell)[cell])
+            continue;
           u.reinit(cell);
           p.reinit(cell);
           p.gather_evaluate(src, EvaluationFlags::values);
@@ -364,6 +482,9 @@ namespace softsand
       FEEvaluation<dim, 1, 3, 1, double> p(data, range, 1, 0);
       for (unsigned int cell = range.first; cell < range.second; ++cell)
         {
+          // All velocity nodes imposed: nothing reaches a free row.
+          if (skip_cell != nullptr && (*skip_cell)[cell])
+            continue;
           u.reinit(cell);
           p.reinit(cell);
           u.gather_evaluate(src, EvaluationFlags::gradients);

@@ -526,7 +526,8 @@ namespace softsand
       // solve (transient, convective) allocates it on first assembly, as
       // do moving grains, whose pattern depends on where they are.
       pattern_constraints.clear();
-      if (use_matrix_free(Assembly::steady_stokes) || moving_solids)
+      if (use_matrix_free(Assembly::steady_stokes) || moving_solids ||
+          use_transient_matrix_free())
         {
           preconditioner.reset();
           system_matrix.clear();
@@ -564,8 +565,10 @@ namespace softsand
       older_solution.reinit(solution);
       system_rhs.reinit(owned_partitioning, mpi_communicator);
       steps_since_start = 0;
+      transient_matrix_free.reset();
       if (solver_parameters.linear_solver ==
-          SolverParameters::LinearSolver::matrix_free)
+            SolverParameters::LinearSolver::matrix_free ||
+          use_transient_matrix_free())
         setup_matrix_free_dofs();
     }
 
@@ -1657,10 +1660,20 @@ namespace softsand
         };
       assemble(kind, dt, bdf_order, &both, &either);
 
+      force += pressure_face_force();
+      last_boundary_force = Utilities::MPI::sum(force, mpi_communicator);
+    }
+
+
+    template <int dim>
+    Tensor<1, dim>
+    PenalizedNavierStokes<dim>::pressure_face_force() const
+    {
       // Pressure faces: the fluid pushes with p_b on the outward normal,
       // integrated over the mesh's faces (a cylinder's end is a 32-gon, a
       // mesh file's faces need not be planes of the box), so that a uniform
       // pressure exerts no net force.
+      Tensor<1, dim>    force;
       FEFaceValues<dim> face_values(fe,
                                     QGauss<dim - 1>(2),
                                     update_normal_vectors | update_JxW_values);
@@ -1680,7 +1693,7 @@ namespace softsand
                   force += p_b * face_values.normal_vector(q) *
                            face_values.JxW(q);
               }
-      last_boundary_force = Utilities::MPI::sum(force, mpi_communicator);
+      return force;
     }
 
 
@@ -1829,10 +1842,15 @@ namespace softsand
       last_bdf_order  = order;
       last_was_steady = false;
       make_constraints();
-      assemble(Assembly::transient, dt, order);
-      solve_linear(true);
+      if (use_transient_matrix_free())
+        advance_matrix_free(dt, order);
+      else
+        {
+          assemble(Assembly::transient, dt, order);
+          solve_linear(true);
+          compute_reactions(Assembly::transient, dt, order);
+        }
       statistics.nonlinear_iterations = 1;
-      compute_reactions(Assembly::transient, dt, order);
 
       BlockVector change(owned_partitioning, mpi_communicator), u(change);
       change = solution;

@@ -234,6 +234,36 @@ namespace softsand
       void
       apply_divergence(VectorType &dst, const VectorType &velocity) const;
 
+      /**
+       * What one time step adds to the operator of a mesh (the transient
+       * matrix-free path): cells with a nonzero entry of @p skip_cell (per
+       * cell batch; their velocity nodes are all imposed, so they add
+       * nothing to a free row) are left out of vmult(); the locally owned
+       * rows @p step_velocity and @p step_pressure (local indices: the
+       * grains' rigid nodes and pinned pressures, constrained in this step
+       * only) act as identity rows; @p velocity_extra (assembled: the
+       * traction faces' convective term) adds to the velocity block.
+       * Vectors handed to vmult() must be zero on those rows.
+       */
+      void
+      set_step_data(const std::vector<unsigned char>     *skip_cell,
+                    const std::vector<unsigned int>      &step_velocity,
+                    const std::vector<unsigned int>      &step_pressure,
+                    const TrilinosWrappers::SparseMatrix *velocity_extra);
+      /// dst = A src, the velocity block alone, with the rows and cells of
+      /// set_step_data() (inner solves of the transient path).
+      void
+      vmult_velocity(VectorType &dst, const VectorType &src) const;
+      /// Set the rows of set_step_data() and of the constraints to zero.
+      void
+      zero_constrained_rows(BlockVectorType &vector) const;
+      void
+      zero_constrained_velocity_rows(VectorType &vector) const;
+      /// dst = src on the constrained pressure rows (identity rows).
+      void
+      copy_constrained_pressure_rows(VectorType       &dst,
+                                     const VectorType &src) const;
+
       void
       initialize_dof_vector(BlockVectorType &vector) const;
 
@@ -255,12 +285,20 @@ namespace softsand
         VectorType                                  &dst,
         const VectorType                            &src,
         const std::pair<unsigned int, unsigned int> &range) const;
+      void
+      local_velocity(const MatrixFree<dim, double>               &data,
+                     VectorType                                  &dst,
+                     const VectorType                            &src,
+                     const std::pair<unsigned int, unsigned int> &range) const;
 
       std::shared_ptr<const MatrixFree<dim, double>>          matrix_free;
       std::shared_ptr<const VelocityOperator<dim, 2, double>> velocity;
       std::vector<unsigned int> constrained_velocity, constrained_pressure;
       const TrilinosWrappers::SparseMatrix *pressure_block = nullptr;
-      mutable VectorType                    pressure_tmp;
+      const TrilinosWrappers::SparseMatrix *velocity_extra = nullptr;
+      const std::vector<unsigned char>     *skip_cell      = nullptr;
+      std::vector<unsigned int> step_velocity, step_pressure;
+      mutable VectorType                    pressure_tmp, velocity_tmp;
     };
 
 

@@ -321,6 +321,27 @@ namespace softsand
                 solver_parameters.schur ==
                   SolverParameters::Schur::least_squares_commutator);
       }
+      /// Whether advance() takes the transient matrix-free path.
+      bool
+      use_transient_matrix_free() const
+      {
+        // Grad-div is refused with it (SolverParameters).
+        return solver_parameters.transient_solver ==
+               SolverParameters::LinearSolver::matrix_free;
+      }
+      /// The transient matrix-free path, per mesh: MatrixFree on the mesh's
+      /// own constraints (hanging nodes, walls, pressure regions), the
+      /// pattern of the assembled pieces, the per-mesh right-hand side.
+      void
+      setup_transient_matrix_free();
+      /// One BDF step of @p order on the transient matrix-free path, then
+      /// its reactions (rigid nodes, walls) from the rows' residual.
+      unsigned int
+      advance_matrix_free(const double time_step, const unsigned int order);
+      /// The force of the prescribed pressures p_b on the pressure faces of
+      /// this rank's cells (both paths' boundary force).
+      Tensor<1, dim>
+      pressure_face_force() const;
       /// Cell matrix, right-hand side and dof indices before constraints.
       using CellCallback =
         std::function<void(const typename DoFHandler<dim>::active_cell_iterator &,
@@ -528,6 +549,10 @@ namespace softsand
       DoFHandler<dim> dof_handler_pressure;
       struct MatrixFreeData;
       std::shared_ptr<MatrixFreeData> matrix_free_data;
+      /// The transient matrix-free path's state, kept while the mesh is
+      /// (transient_matrix_free.cc); reset by setup_dofs().
+      struct TransientMatrixFree;
+      std::shared_ptr<TransientMatrixFree> transient_matrix_free;
 
       TrilinosWrappers::BlockSparseMatrix system_matrix;
       /// Pressure blocks of the Schur complement approximation.
