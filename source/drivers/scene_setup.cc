@@ -1,6 +1,7 @@
 #include <deal.II/grid/grid_generator.h>
 
 #include <softsand/base/parameter_tools.h>
+#include <softsand/base/version.h>
 #include <softsand/base/warnings.h>
 #include <softsand/drivers/cylinder_mesh.h>
 #include <softsand/drivers/file_mesh.h>
@@ -33,6 +34,10 @@ namespace softsand
         std::filesystem::create_directories(directory, error);
         log.open(directory + "/log.txt",
                  append ? std::ios::app : std::ios::trunc);
+        // Which softsand wrote what follows (a restart appends its own).
+        if (log.is_open())
+          log << base::version_line() << (append ? ", restarted" : "")
+              << std::endl;
         return log;
       }
     } // namespace
