@@ -113,6 +113,10 @@ def run(prm, build, log):
     """softsand and libsoftsand.so of directory `build` on prm; its
     time-loop throughput."""
     env = dict(os.environ, LD_LIBRARY_PATH=build)
+    with open(prm) as f:
+        text = f.read()
+    prm_tools.fresh_output(text, os.path.join(
+        ROOT, prm_tools.get_entry(text, "output/directory")))
     with open(log, "w") as f:
         # From the repository: scenes name their packs relative to it.
         subprocess.run([os.path.join(build, "softsand"), prm], env=env,

@@ -109,6 +109,7 @@ def run_softsand(ranks, steps, workdir):
              "subsection output\n set directory = %s\nend\n" % (steps * 1e-5, out))
     with open(prm, "w") as f:
         f.write(text)
+    prm_tools.fresh_output(text, out)
     log = subprocess.run(mpi_prefix(ranks) + [os.path.join(ROOT, "build/softsand"), prm],
                          capture_output=True, text=True, check=True).stdout
     rate = float(re.search(r"([0-9.e+]+) grain-steps/s in the time loop", log).group(1))

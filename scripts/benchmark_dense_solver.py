@@ -130,6 +130,7 @@ def run(a, problem, spec, ranks, tolerance=None):
     prm_file = os.path.join(a.workdir, name + '.prm')
     with open(prm_file, 'w') as f:
         f.write(text)
+    prm_tools.fresh_output(text, outdir)
     cmd = [sys.executable, os.path.join(ROOT, 'scripts', 'peak_memory.py'),
            os.path.join(ROOT, 'build', 'softsand'), prm_file]
     if ranks > 1:

@@ -107,6 +107,7 @@ def run_softsand(softsand, angle, speed, rayleigh_fraction, workdir):
     prm = os.path.join(workdir, name + ".prm")
     with open(prm, "w") as f:
         f.write(text)
+    prm_tools.fresh_output(text, out)
     proc = subprocess.run([softsand, prm], capture_output=True, text=True)
     if proc.returncode != 0:
         sys.exit("softsand failed on %s:\n%s%s" % (prm, proc.stdout[-3000:], proc.stderr[-3000:]))

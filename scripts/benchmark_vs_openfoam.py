@@ -175,6 +175,7 @@ def run_softsand(case, code, n, ranks, workdir):
     prm = os.path.join(workdir, name + '.prm')
     with open(prm, 'w') as f:
         f.write(text)
+    prm_tools.fresh_output(text, outdir)
     start = time.time()
     proc = subprocess.run(mpi(ranks, [sys.executable, PEAK,
                                       os.path.join(ROOT, 'build', 'softsand'),

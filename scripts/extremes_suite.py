@@ -304,6 +304,7 @@ def run_case(case, workdir, softsand):
     prm = os.path.join(workdir, case.name + '.prm')
     with open(prm, 'w') as f:
         f.write(text)
+    prm_tools.fresh_output(text, outdir)
     cmd = [softsand, prm]
     if case.ranks > 1:
         cmd = ['mpirun', '-np', str(case.ranks)] + cmd

@@ -184,6 +184,9 @@ def run_one(args, text, p):
     cmd = [args.softsand, prm]
     if args.ranks > 1:
         cmd = ['mpirun', '-np', str(args.ranks)] + cmd
+    # A run without a checkpoint starts anew: softsand refuses an output
+    # directory that holds an earlier run's results (its wall time goes).
+    prm_tools.fresh_output(text, outdir)
     os.makedirs(outdir, exist_ok=True)
     running_file = os.path.join(outdir, 'sweep_running.txt')
     earlier = float(open(wall_file).read()) if os.path.exists(wall_file) else 0

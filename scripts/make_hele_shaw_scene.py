@@ -73,6 +73,7 @@ def run_stage(args, name, template, overrides):
     prm = os.path.join(args.workdir, name + '.prm')
     with open(prm, 'w') as f:
         f.write(text)
+    prm_tools.fresh_output(text, outdir)
     cmd = [args.softsand, prm]
     if args.ranks > 1:
         cmd = ['mpirun', '-np', str(args.ranks)] + cmd

@@ -2,6 +2,7 @@
 text, run softsand, read its statistics table."""
 import os
 import re
+import shutil
 import subprocess
 import time
 
@@ -153,6 +154,16 @@ def timer_sections(text, column='max'):
     return sections
 
 
+def fresh_output(text, directory):
+    """Remove @p directory unless @p text restarts from its checkpoint
+    (simulation control/restart = true): softsand refuses to start a new
+    run in a directory that holds an earlier run's results, and a study
+    rerun replaces its own."""
+    restart = (get_entry(text, 'simulation control/restart') or '').lower()
+    if restart not in ('true', 'yes', '1'):
+        shutil.rmtree(directory, ignore_errors=True)
+
+
 def run(softsand, text, workdir, name, ranks=1, overrides=()):
     """Write <workdir>/<name>.prm with the overrides applied, run it, and
     return (last statistics row, wall time in s)."""
@@ -166,6 +177,7 @@ def run(softsand, text, workdir, name, ranks=1, overrides=()):
     os.makedirs(workdir, exist_ok=True)
     with open(prm, 'w') as f:
         f.write(text)
+    fresh_output(text, outdir)
     cmd = [softsand, prm]
     if ranks > 1:
         cmd = ['mpirun', '-np', str(ranks)] + cmd

@@ -96,6 +96,7 @@ def make_pack(workdir, d, friction, pressure, seed):
         # Poured before with the same parameters: reuse it.
         return saved_pack(out, d)
     open(prm, 'w').write(text)
+    prm_tools.fresh_output(text, out)
     log = subprocess.run([SOFTSAND, prm], capture_output=True, text=True, check=True).stdout
     height = -float(re.search(r'wall_0_position\s+(\S+)', log).group(1))
     return os.path.join(out, 'pack.txt'), height, 1.1 * d

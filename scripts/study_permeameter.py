@@ -116,6 +116,7 @@ def pour(workdir, radius, seed):
     os.makedirs(workdir, exist_ok=True)
     if not (os.path.exists(pack) and os.path.exists(prm) and open(prm).read() == text):
         open(prm, 'w').write(text)
+        prm_tools.fresh_output(text, out)
         subprocess.run([SOFTSAND, prm], check=True, capture_output=True, text=True)
     height = -prm_tools.read_statistics(out)[-1]['wall_0_position']
     return pack, height

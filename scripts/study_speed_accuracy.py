@@ -98,6 +98,7 @@ def run_study(case, refinement, values, workdir, extra, reuse):
     table = os.path.join(outdir, 'convergence.txt')
     if reuse and os.path.exists(table):
         return read_table(table)
+    prm_tools.fresh_output(text, outdir)
     with open(log, 'w') as out:
         proc = subprocess.run([os.path.join(ROOT, 'build', 'softsand'), prm],
                               cwd=ROOT, stdout=out, stderr=subprocess.STDOUT)
@@ -278,6 +279,7 @@ def run_reference(case, n, workdir, extra, reuse):
         f.write(text)
     stats = os.path.join(outdir, 'statistics.txt')
     if not (reuse and os.path.exists(stats)):
+        prm_tools.fresh_output(text, outdir)
         with open(os.path.join(workdir, name + '.log'), 'w') as out:
             subprocess.run([os.path.join(ROOT, 'build', 'softsand'), prm],
                            cwd=ROOT, stdout=out, stderr=subprocess.STDOUT,

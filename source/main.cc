@@ -3,6 +3,7 @@
 
 #include <softsand/base/parameter_tools.h>
 #include <softsand/base/stop_request.h>
+#include <softsand/base/version.h>
 #include <softsand/core/parameters.h>
 #include <softsand/drivers/run_parameter_file.h>
 
@@ -10,6 +11,7 @@
 #include <iostream>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace
 {
@@ -17,11 +19,16 @@ namespace
   print_usage()
   {
     std::cout
-      << "Usage: softsand FILE.prm            run the scene in FILE.prm\n"
-         "       mpirun -np N softsand FILE.prm\n"
+      << "Usage: softsand FILE.prm [--set \"SUBSECTION/ENTRY=VALUE\"]...\n"
+         "                                    run the scene in FILE.prm, each\n"
+         "                                    --set changing one entry after\n"
+         "                                    the file is read\n"
+         "       mpirun -np N softsand FILE.prm [--set ...]\n"
          "       softsand --print-parameters [2|3]\n"
          "                                    print every parameter with its\n"
-         "                                    documentation and default\n";
+         "                                    documentation and default\n"
+         "       softsand --version           print the version and the git\n"
+         "                                    commit it was built from\n";
   }
 
 } // namespace
@@ -53,23 +60,54 @@ main(int argc, char *argv[])
                                ParameterHandler::OutputStyle::PRM);
           return 0;
         }
-      if (argc > 2)
+      if (std::string(argv[1]) == "--version")
         {
-          // Options after the file would otherwise be dropped without a
-          // word: the run would not be the one asked for.
           if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
-            std::cerr << "softsand: error: unexpected argument '" << argv[2]
-                      << "' after the parameter file " << argv[1]
-                      << ": softsand takes one parameter file (change "
-                         "entries in the file itself)."
-                      << std::endl;
+            std::cout << softsand::base::version_line() << std::endl;
+          return 0;
+        }
+      // The parameter file, then --set options; anything else is refused
+      // rather than dropped: the run would not be the one asked for.
+      std::string              filename;
+      std::vector<std::string> settings;
+      std::string              argument_error;
+      for (int k = 1; k < argc && argument_error.empty(); ++k)
+        {
+          const std::string argument = argv[k];
+          if (argument == "--set")
+            {
+              if (k + 1 < argc)
+                settings.emplace_back(argv[++k]);
+              else
+                argument_error = "--set needs \"SUBSECTION/ENTRY=VALUE\" "
+                                 "after it";
+            }
+          else if (argument.rfind("--set=", 0) == 0)
+            settings.push_back(argument.substr(6));
+          else if (filename.empty() && argument.rfind("-", 0) != 0)
+            filename = argument;
+          else
+            argument_error =
+              "unexpected argument '" + argument + "'" +
+              (filename.empty() ? std::string() :
+                                  " after the parameter file " + filename) +
+              ": softsand takes one parameter file and --set options";
+        }
+      if (argument_error.empty() && filename.empty())
+        argument_error = "no parameter file given";
+      if (!argument_error.empty())
+        {
+          if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+            std::cerr << "softsand: error: " << argument_error << std::endl;
           print_usage();
           return 1;
         }
       try
         {
           softsand::base::install_stop_handlers();
-          softsand::drivers::run_parameter_file(argv[1], MPI_COMM_WORLD);
+          softsand::drivers::run_parameter_file(filename,
+                                                MPI_COMM_WORLD,
+                                                settings);
           if (softsand::base::stopped_on_request())
             return softsand::base::exit_code_stopped;
         }

@@ -1,14 +1,52 @@
 #include <softsand/base/parameter_tools.h>
 #include <softsand/core/parameters.h>
 
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
+#include <sstream>
 
 namespace softsand
 {
   namespace core
   {
+    std::map<std::string, std::string>
+    all_entries(const ParameterHandler &prm)
+    {
+      std::ostringstream text;
+      prm.print_parameters(text, ParameterHandler::OutputStyle::ShortPRM);
+      std::istringstream       in(text.str());
+      const std::regex         subsection(R"(^\s*subsection\s+(.*?)\s*$)");
+      const std::regex         end(R"(^\s*end\s*$)");
+      const std::regex         set(R"(^\s*set\s+(.*?)\s*=\s?(.*?)\s*$)");
+      std::vector<std::string> path;
+      std::map<std::string, std::string> entries;
+      for (std::string line; std::getline(in, line);)
+        {
+          std::smatch m;
+          if (std::regex_match(line, m, subsection))
+            path.push_back(m[1]);
+          else if (std::regex_match(line, end))
+            {
+              if (!path.empty())
+                path.pop_back();
+            }
+          else if (std::regex_match(line, m, set))
+            {
+              std::string entry;
+              for (const auto &s : path)
+                entry += s + "/";
+              entries[entry + std::string(m[1])] = m[2];
+            }
+        }
+      return entries;
+    }
+
+
     template <int dim>
     void
     Parameters<dim>::declare_parameters(ParameterHandler &prm)
@@ -38,6 +76,7 @@ namespace softsand
     void
     Parameters<dim>::parse_parameters(ParameterHandler &prm)
     {
+      entries = all_entries(prm);
       simulation_control.parse_parameters(prm);
       mesh.parse_parameters(prm);
       grains.parse_parameters(prm);
@@ -109,6 +148,96 @@ namespace softsand
         }
       return dim;
     }
+
+    namespace
+    {
+      /// The file named by each 'include' statement of @p filename, read
+      /// as ParameterHandler::parse_input() reads them: comments (from an
+      /// unescaped '#') removed, lines ending in '\\' joined, and the
+      /// statement "include NAME" or "INCLUDE NAME" at the start of a
+      /// trimmed line.
+      std::vector<std::string>
+      included_files(std::istream &in)
+      {
+        std::vector<std::string> files;
+        std::string              joined;
+        for (std::string line; std::getline(in, line);)
+          {
+            for (std::size_t k = line.find('#'); k != std::string::npos;
+                 k             = line.find('#', k + 1))
+              if (k == 0 || line[k - 1] != '\\')
+                {
+                              line.erase(k);
+                              break;
+                }
+            line = Utilities::trim(line);
+            if (!line.empty() && line.back() == '\\')
+              {
+                joined += line.substr(0, line.size() - 1);
+                continue;
+              }
+            line = Utilities::trim(joined + line);
+            joined.clear();
+            if (line.rfind("include ", 0) == 0 ||
+                line.rfind("INCLUDE ", 0) == 0)
+              {
+                const std::string name = Utilities::trim(line.substr(8));
+                if (!name.empty())
+                  files.push_back(name);
+              }
+          }
+        return files;
+      }
+
+      void
+      follow_includes(const std::string                  &filename,
+                      std::vector<std::filesystem::path> &stack,
+                      std::vector<std::string>           &names)
+      {
+        std::error_code       error;
+        std::filesystem::path path =
+          std::filesystem::weakly_canonical(filename, error);
+        if (error)
+          path = std::filesystem::absolute(filename).lexically_normal();
+        const auto seen = std::find(stack.begin(), stack.end(), path);
+        if (seen != stack.end())
+          {
+            std::string chain;
+            for (auto k = seen - stack.begin(); k < long(names.size()); ++k)
+              chain += "<" + names[k] + "> includes ";
+            chain += "<" + filename + ">";
+            AssertThrow(false,
+                        ExcMessage(
+                          "The parameter files include each other in a "
+                          "cycle: " +
+                          chain +
+                          ". Remove the 'include' statement that closes "
+                          "the cycle (relative paths in an 'include' are "
+                          "taken from the working directory, as deal.II "
+                          "reads them)."));
+          }
+        // A missing file: deal.II names it when it reads the statement.
+        std::ifstream in(filename);
+        if (!in)
+          return;
+        stack.push_back(path);
+        names.push_back(filename);
+        for (const auto &included : included_files(in))
+          follow_includes(included, stack, names);
+        stack.pop_back();
+        names.pop_back();
+      }
+    } // namespace
+
+
+    void
+    check_include_cycles(const std::string &filename)
+    {
+      std::vector<std::filesystem::path> stack;
+      std::vector<std::string>           names;
+      follow_includes(filename, stack, names);
+    }
+
 
     std::vector<std::string>
     duplicated_entries(const std::string &filename)

@@ -1,17 +1,252 @@
 #include <softsand/drivers/checkpoint_files.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
 
+#include <softsand/base/warnings.h>
+
+#include <algorithm>
 #include <csignal>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <map>
 
 namespace softsand
 {
   namespace drivers
   {
     using namespace dealii;
+
+    namespace
+    {
+      const std::string fingerprint_tag = "scene ";
+      const std::string hash_entry      = "fixed entries hash";
+
+      /// @p value with every number written alike (15 digits), so that
+      /// "1e-3" and "0.001" are the same value.
+      std::string
+      normalized_value(const std::string &value)
+      {
+        std::string out, token;
+        const auto  flush = [&]() {
+          if (token.empty())
+            return;
+          char  *end    = nullptr;
+          double number = std::strtod(token.c_str(), &end);
+          if (end != nullptr && *end == '\0')
+            {
+              char text[32];
+              std::snprintf(text, sizeof(text), "%.15g", number);
+              out += text;
+            }
+          else
+            out += token;
+          token.clear();
+        };
+        // Separators as ", " and "; ", other blanks as one space.
+        for (const char c : value)
+          if (c == ',' || c == ';')
+            {
+              flush();
+              while (!out.empty() && out.back() == ' ')
+                out.pop_back();
+              out += c;
+              out += ' ';
+            }
+          else if (c == ' ' || c == '\t')
+            {
+              flush();
+              if (!out.empty() && out.back() != ' ')
+                out += ' ';
+            }
+          else
+            token += c;
+        flush();
+        while (!out.empty() && out.back() == ' ')
+          out.pop_back();
+        return out;
+      }
+
+      /// 64-bit FNV-1a of @p text, in hexadecimal: the same on every
+      /// machine and compiler (std::hash is not).
+      std::string
+      fnv1a(const std::string &text)
+      {
+        std::uint64_t hash = 14695981039346656037ull;
+        for (const unsigned char c : text)
+          {
+            hash ^= c;
+            hash *= 1099511628211ull;
+          }
+        std::ostringstream out;
+        out << std::hex << std::setw(16) << std::setfill('0') << hash;
+        return out.str();
+      }
+
+      /// The number of grains of the scene as its parameters give it.
+      template <int dim>
+      std::string
+      grain_count(const dem::GrainParameters<dim> &grains)
+      {
+        using Source = typename dem::GrainParameters<dim>::Source;
+        switch (grains.source)
+          {
+            case Source::none:
+              return "0";
+            case Source::list:
+              {
+                unsigned int n = 0;
+                for (const auto &item :
+                     Utilities::split_string_list(grains.list, ';'))
+                  if (!item.empty())
+                    ++n;
+                return std::to_string(n);
+              }
+            case Source::file:
+              {
+                std::ifstream in(grains.file);
+                if (!in)
+                  return "unknown (the pack file is unreadable)";
+                unsigned int n = 0;
+                for (std::string line; std::getline(in, line);)
+                  {
+                    const auto first = line.find_first_not_of(" \t\r");
+                    if (first != std::string::npos && line[first] != '#')
+                      ++n;
+                  }
+                return std::to_string(n);
+              }
+            case Source::random:
+              return grains.count > 0 ? std::to_string(grains.count) :
+                                        "by solid fraction";
+            default:
+              return "a lattice";
+          }
+      }
+
+      /// "path = value" lines as a map.
+      std::map<std::string, std::string>
+      entry_map(std::istream &in)
+      {
+        std::map<std::string, std::string> entries;
+        for (std::string line; std::getline(in, line);)
+          {
+            const auto equals = line.find(" = ");
+            if (equals != std::string::npos)
+              entries[line.substr(0, equals)] = line.substr(equals + 3);
+          }
+        return entries;
+      }
+
+      /// A value shortened for a message (a grain list may be long).
+      std::string
+      shortened(const std::string &value)
+      {
+        return value.size() <= 60 ? "<" + value + ">" :
+                                    "<" + value.substr(0, 57) + "...>";
+      }
+
+      /// The fixed entries that differ between the checkpoint's file
+      /// @p scene_file and @p now, but those named in @p named: "; ENTRY:
+      /// <OLD> in the checkpoint, <NEW> now" each. Empty where @p scene_file
+      /// is missing.
+      std::string
+      differing_entries(const std::string      &scene_file,
+                        const std::string      &now,
+                        const SceneFingerprint &named)
+      {
+        std::ifstream in(scene_file);
+        if (!in)
+          return "";
+        std::istringstream now_stream(now);
+        auto               old_entries = entry_map(in);
+        auto               new_entries = entry_map(now_stream);
+        for (const auto &[path, value] : old_entries)
+          new_entries.emplace(path, "(not set)");
+        std::string text;
+        for (const auto &[path, value] : new_entries)
+          {
+            if (std::any_of(named.entries.begin(),
+                            named.entries.end(),
+                            [&](const auto &e) { return e.first == path; }))
+              continue;
+            const auto        it = old_entries.find(path);
+            const std::string old_value =
+              it == old_entries.end() ? "(not set)" : it->second;
+            if (old_value != value)
+              text += "; " + path + ": " + shortened(old_value) +
+                      " in the checkpoint, " + shortened(value) + " now";
+          }
+        return text;
+      }
+    } // namespace
+
+
+    template <int dim>
+    std::string
+    fixed_entries(const core::Parameters<dim> &parameters)
+    {
+      // The mesh's entries but the Kelly cycles (steady scenes only) and
+      // the resolution check's override; the grains' but the overlap
+      // threshold of the input check; the walls.
+      const std::vector<std::string> fixed  = {"dimension",
+                                               "simulation control/mode",
+                                               "mesh/",
+                                               "grains/",
+                                               "dem/walls/"};
+      const std::vector<std::string> free   = {"mesh/kelly cycles",
+                                               "mesh/kelly refine fraction",
+                                               "mesh/allow unresolved grains",
+                                               "grains/max overlap ratio"};
+      const auto                     starts = [](const std::string &path,
+                             const std::string &prefix) {
+        return prefix.back() == '/' ? path.rfind(prefix, 0) == 0 :
+                                                          path == prefix;
+      };
+      std::string text;
+      for (const auto &[path, value] : parameters.entries)
+        if (std::any_of(fixed.begin(),
+                        fixed.end(),
+                        [&](const auto &p) { return starts(path, p); }) &&
+            std::none_of(free.begin(), free.end(), [&](const auto &p) {
+              return starts(path, p);
+            }))
+          text += path + " = " + normalized_value(value) + "\n";
+      return text;
+    }
+
+
+    template <int dim>
+    SceneFingerprint
+    scene_fingerprint(const core::Parameters<dim> &p)
+    {
+      const auto entry = [&](const std::string &path) {
+        const auto it = p.entries.find(path);
+        return it == p.entries.end() ? std::string("(not set)") :
+                                       normalized_value(it->second);
+      };
+      SceneFingerprint fingerprint;
+      fingerprint.fixed_entries = fixed_entries(p);
+      fingerprint.entries       = {
+              {"simulation control/mode", entry("simulation control/mode")},
+              {"dimension", std::to_string(dim)},
+              {"mesh/geometry", entry("mesh/geometry")},
+              {"mesh/lower corner", entry("mesh/lower corner")},
+              {"mesh/upper corner", entry("mesh/upper corner")},
+              {"mesh/coarse cells", entry("mesh/coarse cells")},
+              {"mesh/cells per diameter", entry("mesh/cells per diameter")},
+              {"mesh/mesh file", entry("mesh/mesh file")},
+              {"grains/source", entry("grains/source")},
+              {"grains/file", entry("grains/file")},
+              {"grain count", grain_count(p.grains)},
+              {hash_entry, fnv1a(fingerprint.fixed_entries)}};
+      return fingerprint;
+    }
+
 
     std::string
     checkpoint_base(const std::string &directory, const unsigned long step)
@@ -21,11 +256,12 @@ namespace softsand
 
 
     void
-    commit_checkpoint(const std::string &directory,
-                      const unsigned long step,
-                      const std::string &mode,
-                      const std::string &info,
-                      const MPI_Comm     comm)
+    commit_checkpoint(const std::string      &directory,
+                      const unsigned long     step,
+                      const std::string      &mode,
+                      const SceneFingerprint &fingerprint,
+                      const std::string      &info,
+                      const MPI_Comm          comm)
     {
       namespace fs = std::filesystem;
       // Every rank's files are complete before the info names them.
@@ -33,8 +269,15 @@ namespace softsand
       if (Utilities::MPI::this_mpi_process(comm) == 0)
         {
           {
+            std::ofstream out(checkpoint_base(directory, step) + ".scene");
+            out << fingerprint.fixed_entries;
+          }
+          {
             std::ofstream out(directory + "/checkpoint.info.tmp");
-            out << info << "mode " << mode << '\n';
+            out << info;
+            for (const auto &[entry, value] : fingerprint.entries)
+              out << fingerprint_tag << entry << " = " << value << '\n';
+            out << "mode " << mode << '\n';
           }
           fs::rename(directory + "/checkpoint.info.tmp",
                      directory + "/checkpoint.info");
@@ -59,7 +302,10 @@ namespace softsand
 
 
     std::istringstream
-    read_checkpoint_info(const std::string &directory, const std::string &mode)
+    read_checkpoint_info(const std::string      &directory,
+                         const std::string      &mode,
+                         const SceneFingerprint &fingerprint,
+                         const MPI_Comm          comm)
     {
       const std::string name = directory + "/checkpoint.info";
       std::ifstream     in(name);
@@ -68,9 +314,20 @@ namespace softsand
                              "is no checkpoint <" +
                              name +
                              ">: run with a checkpoint interval > 0 first."));
-      std::ostringstream contents;
-      contents << in.rdbuf();
-      const std::string text = contents.str();
+      // The scene's fingerprint apart; the rest is the scene's own.
+      std::string                        text;
+      std::map<std::string, std::string> written;
+      for (std::string line; std::getline(in, line);)
+        if (line.rfind(fingerprint_tag, 0) == 0)
+          {
+            const auto equals = line.find(" = ");
+            if (equals != std::string::npos)
+              written[line.substr(fingerprint_tag.size(),
+                                  equals - fingerprint_tag.size())] =
+                line.substr(equals + 3);
+          }
+        else
+          text += line + '\n';
       // The last line names the mode (checkpoints of earlier versions,
       // always coupled, have none).
       std::string written_by = "coupled";
@@ -85,6 +342,64 @@ namespace softsand
                              name + "> was written by a " + written_by +
                              " run; this run's mode is " + mode +
                              ": restart with the parameters of that run."));
+
+      if (written.empty())
+        base::warn("The checkpoint <" + name +
+                     "> was written by an earlier softsand without the "
+                     "scene's fingerprint: whether it is this scene's (the "
+                     "same mesh, grains and walls) cannot be checked. The "
+                     "run goes on from it.",
+                   comm);
+      else
+        {
+          unsigned long step = 0;
+          std::istringstream(text) >> step;
+          std::string differences;
+          bool        hash_differs = false;
+          for (const auto &[entry, value] : fingerprint.entries)
+            {
+              const auto        it = written.find(entry);
+              const std::string old_value =
+                it == written.end() ? "(not recorded)" : it->second;
+              if (old_value == value)
+                continue;
+              if (entry == hash_entry)
+                hash_differs = true;
+              else
+                differences += "; " + entry + ": " + shortened(old_value) +
+                               " in the checkpoint, " + shortened(value) +
+                               " now";
+            }
+          // The other fixed entries by name, from the checkpoint's copy.
+          if (hash_differs)
+            {
+              const std::string others =
+                differing_entries(checkpoint_base(directory, step) + ".scene",
+                                  fingerprint.fixed_entries,
+                                  fingerprint);
+              if (!others.empty())
+                differences += others;
+              else if (differences.empty())
+                differences = "; an entry of mesh/, grains/ or dem/walls/ "
+                              "(their hash: <" +
+                              written[hash_entry] + "> in the checkpoint, <" +
+                              fingerprint.entries.back().second + "> now)";
+            }
+          if (!differences.empty())
+            AssertThrow(false,
+                        ExcMessage(
+                          "simulation control/restart = true, but the "
+                          "checkpoint <" +
+                          name +
+                          "> was written by another scene (another parameter "
+                          "file's run in the same output directory, or this "
+                          "one with other mesh or grain entries). What "
+                          "differs: " +
+                          differences.substr(2) +
+                          ". Restart with the parameters of the run that "
+                          "wrote it, or start anew (restart = false) in "
+                          "another output directory."));
+        }
       return std::istringstream(text);
     }
 
@@ -107,5 +422,13 @@ namespace softsand
                              "> is missing or unreadable."));
       return in;
     }
+    template SceneFingerprint
+    scene_fingerprint(const core::Parameters<2> &);
+    template SceneFingerprint
+    scene_fingerprint(const core::Parameters<3> &);
+    template std::string
+    fixed_entries(const core::Parameters<2> &);
+    template std::string
+    fixed_entries(const core::Parameters<3> &);
   } // namespace drivers
 } // namespace softsand

@@ -59,7 +59,12 @@ namespace softsand
               fracture_development->save(info);
             }
         }
-      commit_checkpoint(dir, step, "coupled", info.str(), mpi_communicator);
+      commit_checkpoint(dir,
+                        step,
+                        "coupled",
+                        scene_fingerprint(parameters),
+                        info.str(),
+                        mpi_communicator);
     }
 
 
@@ -68,7 +73,8 @@ namespace softsand
     {
       TimerOutput::Scope t(timer, "checkpoint");
       const std::string  dir  = parameters.output.directory;
-      std::istringstream info = read_checkpoint_info(dir, "coupled");
+      std::istringstream info = read_checkpoint_info(
+        dir, "coupled", scene_fingerprint(parameters), mpi_communicator);
       unsigned int fluid_steps = 0, n_centers = 0;
       info >> step >> time >> fluid_steps >> n_mesh_adaptations >> n_centers;
       const std::string base = checkpoint_base(dir, step);

@@ -6,33 +6,87 @@
 #include <softsand/fluid/boundary_conditions.h>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace softsand
 {
   namespace drivers
   {
+    namespace
+    {
+      /// The plural name of a kind of cell, as a mesher calls it.
+      std::string
+      cell_kind(const ReferenceCell &kind)
+      {
+        if (kind == ReferenceCells::Triangle)
+          return "triangles";
+        if (kind == ReferenceCells::Quadrilateral)
+          return "quadrilaterals";
+        if (kind == ReferenceCells::Tetrahedron)
+          return "tetrahedra";
+        if (kind == ReferenceCells::Pyramid)
+          return "pyramids";
+        if (kind == ReferenceCells::Wedge)
+          return "prisms";
+        if (kind == ReferenceCells::Hexahedron)
+          return "hexahedra";
+        return kind.to_string();
+      }
+    } // namespace
+
+
     template <int dim>
     void
     read_file_mesh(Triangulation<dim>              &triangulation,
                    const core::MeshParameters<dim> &mesh)
     {
-      std::ifstream in(mesh.mesh_file);
-      try
-        {
-          GridIn<dim> grid_in;
-          grid_in.attach_triangulation(triangulation);
-          grid_in.read_msh(in);
-        }
-      catch (const std::exception &e)
-        {
-          base::throw_invalid_parameter(
-            "mesh/mesh file",
-            mesh.mesh_file,
-            "deal.II could not read it as a gmsh mesh of " +
-              std::to_string(dim) + "D quadrilaterals/hexahedra (" +
-              base::error_message(e) + ")");
-        }
+      const std::string hypercubes = dim == 2 ? "quadrilaterals" : "hexahedra";
+      const auto        read       = [&](Triangulation<dim> &destination) {
+        std::ifstream in(mesh.mesh_file);
+        try
+          {
+            GridIn<dim> grid_in;
+            grid_in.attach_triangulation(destination);
+            grid_in.read_msh(in);
+          }
+        catch (const std::exception &e)
+          {
+            base::throw_invalid_parameter(
+              "mesh/mesh file",
+              mesh.mesh_file,
+              "deal.II could not read it as a gmsh mesh of " +
+                std::to_string(dim) + "D " + hypercubes + " (" +
+                base::error_message(e) + ")");
+          }
+      };
+
+      // First into a serial triangulation, which takes simplices and mixed
+      // meshes too: p4est takes only quadrilaterals/hexahedra and crashes
+      // on anything else (a segfault, not an error).
+      {
+        Triangulation<dim> serial;
+        read(serial);
+        if (!serial.all_reference_cells_are_hyper_cube())
+          {
+            std::map<std::string, unsigned int> kinds;
+            for (const auto &cell : serial.active_cell_iterators())
+              ++kinds[cell_kind(cell->reference_cell())];
+            std::string found;
+            for (const auto &[kind, count] : kinds)
+              found += (found.empty() ? "" : ", ") + std::to_string(count) +
+                       " " + kind;
+            base::throw_invalid_parameter(
+              "mesh/mesh file",
+              mesh.mesh_file,
+              "its cells are " + found +
+                ", but the octree mesh (p4est) takes only " + hypercubes +
+                ": mesh the domain with " + hypercubes +
+                " only (in gmsh: recombine the mesh; in 3D also "
+                "Mesh.SubdivisionAlgorithm = 2)");
+          }
+      }
+      read(triangulation);
 
       const types::boundary_id wall =
         fluid::BoundaryConditions<dim>::cylinder_wall_id;

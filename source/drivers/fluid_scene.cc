@@ -177,7 +177,12 @@ namespace softsand
       std::ostringstream info;
       info << std::setprecision(17) << step << ' ' << time << ' '
            << fluid.solver().n_steps_done() << '\n';
-      commit_checkpoint(dir, step, "transient", info.str(), mpi_communicator);
+      commit_checkpoint(dir,
+                        step,
+                        "transient",
+                        scene_fingerprint(parameters),
+                        info.str(),
+                        mpi_communicator);
     }
 
 
@@ -187,7 +192,8 @@ namespace softsand
     {
       TimerOutput::Scope t(timer, "checkpoint");
       const std::string  dir  = parameters.output.directory;
-      std::istringstream info = read_checkpoint_info(dir, "transient");
+      std::istringstream info = read_checkpoint_info(
+        dir, "transient", scene_fingerprint(parameters), mpi_communicator);
       info >> first_step >> first_time >> first_steps_done;
       check_checkpoint_info(info, dir);
       // The coarse mesh as at the start, then the saved refinement; the

@@ -75,6 +75,15 @@ namespace softsand
         const auto        &m = parameters.mesh;
         const bool         resolve_grains =
           !grain_list.empty() && m.cells_per_diameter > 0;
+        // Before the mesh grows: a mesh too large for the machine is
+        // refused with the entry that makes it so.
+        if (refine)
+          check_memory_estimate(parameters,
+                                grain_list,
+                                resolve_grains ?
+                                  solids->locator().min_diameter() :
+                                  0.,
+                                mpi_communicator);
         make_domain_mesh(mesh,
                       m,
                       resolve_grains ? solids->locator().min_diameter() : 0.);

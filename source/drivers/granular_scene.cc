@@ -95,7 +95,12 @@ namespace softsand
           info << std::setprecision(17) << step << ' ' << dem->time() << ' '
                << settled_rows << ' ' << max_servo_error << '\n';
         }
-      commit_checkpoint(dir, step, "granular", info.str(), mpi_communicator);
+      commit_checkpoint(dir,
+                        step,
+                        "granular",
+                        scene_fingerprint(parameters),
+                        info.str(),
+                        mpi_communicator);
     }
 
 
@@ -103,7 +108,8 @@ namespace softsand
     GranularScene::read_checkpoint()
     {
       const std::string  dir  = parameters.output.directory;
-      std::istringstream info = read_checkpoint_info(dir, "granular");
+      std::istringstream info = read_checkpoint_info(
+        dir, "granular", scene_fingerprint(parameters), mpi_communicator);
       unsigned long      step = 0;
       double             time = 0;
       info >> step >> time >> settled_rows >> max_servo_error;

@@ -1,6 +1,7 @@
 #include <deal.II/grid/grid_generator.h>
 
 #include <softsand/base/parameter_tools.h>
+#include <softsand/base/version.h>
 #include <softsand/base/warnings.h>
 #include <softsand/drivers/cylinder_mesh.h>
 #include <softsand/drivers/file_mesh.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -33,6 +35,10 @@ namespace softsand
         std::filesystem::create_directories(directory, error);
         log.open(directory + "/log.txt",
                  append ? std::ios::app : std::ios::trunc);
+        // Which softsand wrote what follows (a restart appends its own).
+        if (log.is_open())
+          log << base::version_line() << (append ? ", restarted" : "")
+              << std::endl;
         return log;
       }
     } // namespace
@@ -115,6 +121,20 @@ namespace softsand
           read_file_mesh(triangulation, m);
           return;
         }
+      GridGenerator::subdivided_hyper_rectangle(
+        triangulation,
+        coarse_subdivisions(m, min_diameter),
+        m.lower_corner,
+        m.upper_corner,
+        true);
+    }
+
+
+    template <int dim>
+    std::vector<unsigned int>
+    coarse_subdivisions(const core::MeshParameters<dim> &m,
+                        const double                     min_diameter)
+    {
       std::vector<unsigned int> cells = m.coarse_cells;
       double shortest = std::numeric_limits<double>::max();
       for (unsigned int d = 0; d < dim; ++d)
@@ -149,8 +169,154 @@ namespace softsand
             static_cast<unsigned int>(
               std::round((m.upper_corner[d] - m.lower_corner[d]) / shortest *
                          per_shortest))));
-      GridGenerator::subdivided_hyper_rectangle(
-        triangulation, cells, m.lower_corner, m.upper_corner, true);
+      return cells;
+    }
+
+
+    namespace
+    {
+      /// MemTotal of /proc/meminfo in bytes (0 where it cannot be read).
+      double
+      machine_memory()
+      {
+        std::ifstream in("/proc/meminfo");
+        std::string   name, unit;
+        double        kilobytes = 0;
+        while (in >> name >> kilobytes >> unit)
+          if (name == "MemTotal:")
+            return kilobytes * 1024;
+        return 0;
+      }
+    } // namespace
+
+
+    template <int dim>
+    void
+    check_memory_estimate(const core::Parameters<dim>        &p,
+                          const std::vector<dem::Grain<dim>> &grains,
+                          const double                        min_diameter,
+                          const MPI_Comm                      comm)
+    {
+      using Geometry       = typename core::MeshParameters<dim>::Geometry;
+      const auto &m        = p.mesh;
+      const bool  box      = m.geometry == Geometry::box;
+      const bool  resolved = !grains.empty() && m.cells_per_diameter > 0;
+
+      // The coarse mesh, globally refined (a box's; the cylinder's and a
+      // mesh file's cells are few and not counted).
+      double coarse = 0, coarse_edge = std::numeric_limits<double>::max();
+      if (box)
+        {
+          const auto cells =
+            coarse_subdivisions(m, resolved ? min_diameter : 0.);
+          coarse = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              coarse *= cells[d];
+              coarse_edge =
+                std::min(coarse_edge,
+                         (m.upper_corner[d] - m.lower_corner[d]) / cells[d]);
+            }
+        }
+      else
+        for (unsigned int d = 0; d < dim; ++d)
+          coarse_edge =
+            std::min(coarse_edge, m.upper_corner[d] - m.lower_corner[d]);
+      const double refined = std::pow(2., dim * m.global_refinements);
+      const double global  = coarse * refined;
+      double       finest  = coarse_edge / std::pow(2., m.global_refinements);
+      double       surface = 0; // cells on grain surfaces
+      double       uniform = 0; // cells of a uniform refinement
+      if (resolved)
+        {
+          const double target = min_diameter / m.cells_per_diameter;
+          const int    levels = std::min<int>(
+            std::max(0., std::ceil(std::log2(finest / target) - 1e-9)),
+            int(m.max_refinement_level));
+          finest /= std::pow(2., levels);
+          if (m.uniform_refinement && box)
+            uniform = global * std::pow(2., dim * levels);
+          else
+            {
+              // About 4 cells per h^2 of grain surface (an isolated
+              // sphere: 10.7 with the 2:1 grading, drag_sphere.prm at
+              // N = 8); in a dense pack the grains share their cells: at
+              // most half the box refined to h (the 2,000-grain Hele-Shaw
+              // pack at N = 4: 4.43 M DoFs, 144 k cells, where the box
+              // holds 192 k).
+              for (const auto &g : grains)
+                surface +=
+                  4 * (dim == 3 ? M_PI * std::pow(2 * g.radius / finest, 2) :
+                                  M_PI * 2 * g.radius / finest);
+              double box_cells = 0.5;
+              for (unsigned int d = 0; d < dim; ++d)
+                box_cells *= (m.upper_corner[d] - m.lower_corner[d]) / finest;
+              surface = std::min(surface, box_cells);
+            }
+        }
+      const double cells         = std::max(global, uniform) + surface;
+      const double dofs_per_cell = dim == 3 ? 25 : 9;
+      const bool   matrix_free =
+        p.fluid_solver.linear_solver ==
+        fluid::SolverParameters::LinearSolver::matrix_free;
+      const double bytes_per_dof = matrix_free ? 2e3 : 3e3;
+      const double dofs          = cells * dofs_per_cell;
+      const double bytes         = dofs * bytes_per_dof;
+
+      // This node's share: the ranks that run here.
+      MPI_Comm node;
+      MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+      const unsigned int ranks_here = Utilities::MPI::n_mpi_processes(node);
+      MPI_Comm_free(&node);
+      const double here =
+        bytes * ranks_here / Utilities::MPI::n_mpi_processes(comm);
+      const double memory = Utilities::MPI::min(machine_memory(), comm);
+      if (memory <= 0 || here <= memory)
+        return;
+
+      // The entry that makes the mesh that large.
+      std::string entry, value;
+      const auto  list = [](const auto &values) {
+        std::ostringstream s;
+        for (unsigned int k = 0; k < values.size(); ++k)
+          s << (k ? ", " : "") << values[k];
+        return s.str();
+      };
+      if (surface + uniform > global)
+        {
+          std::ostringstream s;
+          s << m.cells_per_diameter;
+          entry = "mesh/cells per diameter";
+          value = s.str();
+        }
+      else if (refined > coarse || m.coarse_cells.empty())
+        {
+          entry = "mesh/global refinements";
+          value = std::to_string(m.global_refinements);
+        }
+      else
+        {
+          entry = "mesh/coarse cells";
+          value = list(m.coarse_cells);
+        }
+      std::ostringstream why;
+      why << std::setprecision(2) << "the fluid mesh would have about " << cells
+          << " cells";
+      if (surface > 0)
+        why << " (" << surface << " on the surfaces of " << grains.size()
+            << " grains, about 4 per h^2 with h = " << finest << " m)";
+      why << " and " << dofs << " DoFs (" << dofs_per_cell
+          << " per cell, Q2-Q1), at about " << bytes_per_dof / 1e3
+          << " kB per DoF (" << (matrix_free ? "matrix free" : "matrix based")
+          << ") " << std::setprecision(3) << bytes / 1e9 << " GB";
+      if (ranks_here < Utilities::MPI::n_mpi_processes(comm))
+        why << " (" << here / 1e9 << " GB on this node's " << ranks_here
+            << " ranks)";
+      why << ", more than this machine's memory, " << memory / 1e9
+          << " GB (MemTotal in /proc/meminfo); a low estimate: measured "
+             "runs need 3-6 kB per DoF. Coarsen the mesh, or run on more "
+             "nodes";
+      base::throw_invalid_parameter(entry, value, why.str());
     }
 
 
@@ -280,19 +446,25 @@ namespace softsand
     }
 
 
-#define SOFTSAND_INSTANTIATE(dim)                                             \
-  template BoundingBox<dim> scene_box(const core::MeshParameters<dim> &);     \
-  template void             make_domain_mesh(Triangulation<dim> &,            \
-                                          const core::MeshParameters<dim> &,  \
-                                          const double);                      \
-  template std::unique_ptr<fluid::PenalizedNavierStokes<dim>>                 \
-  make_fluid_solver(parallel::distributed::Triangulation<dim> &,        \
-                    const core::Parameters<dim> &,                            \
-                    ConditionalOStream &,                                     \
-                    TimerOutput &);                                           \
-  template void warn_about_fluid_model(const core::Parameters<dim> &,         \
-                                       const bool,                            \
-                                       const MPI_Comm);
+#define SOFTSAND_INSTANTIATE(dim)                                               \
+  template BoundingBox<dim> scene_box(const core::MeshParameters<dim> &);       \
+  template void             make_domain_mesh(Triangulation<dim> &,              \
+                                             const core::MeshParameters<dim> &, \
+                                             const double);                     \
+  template std::unique_ptr<fluid::PenalizedNavierStokes<dim>>                   \
+                make_fluid_solver(parallel::distributed::Triangulation<dim> &,  \
+                                  const core::Parameters<dim> &,                \
+                                  ConditionalOStream &,                         \
+                                  TimerOutput &);                               \
+  template void warn_about_fluid_model(const core::Parameters<dim> &,           \
+                                       const bool,                              \
+                                       const MPI_Comm);                         \
+  template std::vector<unsigned int> coarse_subdivisions(                       \
+    const core::MeshParameters<dim> &, const double);                           \
+  template void check_memory_estimate(const core::Parameters<dim> &,            \
+                                      const std::vector<dem::Grain<dim>> &,     \
+                                      const double,                             \
+                                      const MPI_Comm);
     SOFTSAND_INSTANTIATE(2)
     SOFTSAND_INSTANTIATE(3)
 #undef SOFTSAND_INSTANTIATE

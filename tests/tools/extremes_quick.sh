@@ -22,8 +22,8 @@ fi
 grep -c 'control/' "$work/control.log"
 python3 tests/tools/scan_outputs_control.py "$work/vtu_control"
 # Arguments after the parameter file are refused, not dropped.
-if "$softsand" parameters/drag_sphere.prm --set x > "$work/extra_args.log" 2>&1; then
+if "$softsand" parameters/drag_sphere.prm extra.prm > "$work/extra_args.log" 2>&1; then
   echo "softsand ran with an argument after the parameter file"; exit 1
 fi
-grep -q "unexpected argument '--set'" "$work/extra_args.log"
+grep -q "unexpected argument 'extra.prm'" "$work/extra_args.log"
 echo "extremes_quick: passed"

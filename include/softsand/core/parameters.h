@@ -17,6 +17,7 @@
 #include <softsand/postprocess/fracture_area.h>
 #include <softsand/postprocess/radial_flow.h>
 
+#include <map>
 #include <string>
 
 namespace softsand
@@ -43,6 +44,9 @@ namespace softsand
       ConvergenceStudyParameters           convergence_study;
       postprocess::RadialFlowParameters     radial_flow;
       postprocess::FractureAreaParameters   fracture_area;
+      /// Every entry as read ("subsection/.../entry" -> value, defaults
+      /// included): what a checkpoint's fingerprint is taken of.
+      std::map<std::string, std::string> entries;
 
       static void
       declare_parameters(ParameterHandler &prm);
@@ -50,10 +54,22 @@ namespace softsand
       parse_parameters(ParameterHandler &prm);
     };
 
+    /// Every entry of @p prm with its value ("subsection/entry" -> value).
+    std::map<std::string, std::string>
+    all_entries(const ParameterHandler &prm);
+
     /// The space dimension named by 'set dimension = 2|3' in a parameter
     /// file (3 if absent); stops with a clear message for a missing file.
     unsigned int
     read_dimension(const std::string &filename);
+
+    /// Stops with a message naming the chain of files when the 'include'
+    /// statements of parameter file @p filename form a cycle (a file that
+    /// includes itself, directly or through others), which deal.II would
+    /// follow until the stack overflows. Paths are taken as deal.II takes
+    /// them: relative to the working directory, not to the including file.
+    void
+    check_include_cycles(const std::string &filename);
 
     /// The entries of parameter file @p filename set more than once (the
     /// last one wins in ParameterHandler), each as a sentence naming the

@@ -73,6 +73,35 @@ namespace softsand
                   const core::MeshParameters<dim> &mesh,
                   const double                     min_diameter);
 
+    /// The coarse cells per direction of a box domain, as make_domain_mesh()
+    /// makes them.
+    template <int dim>
+    std::vector<unsigned int>
+    coarse_subdivisions(const core::MeshParameters<dim> &mesh,
+                        const double                     min_diameter);
+
+    /**
+     * Stops the run before its fluid mesh is built when a rough estimate of
+     * the fluid's memory exceeds the machine's (MemTotal of /proc/meminfo;
+     * with several ranks, this node's share of the estimate), with a
+     * message naming the entry that makes the mesh that large, the
+     * estimate and the machine's memory. Without the check, a mesh of
+     * coarse cells = 2000, 2000, 2000 or cells per diameter = 256 grew
+     * until the machine ran out of memory. The estimate is low rather than
+     * high (it refuses no run that fits): the coarse cells times 2^(dim g)
+     * for g global refinements, refined uniformly, or by about 4 cells per
+     * h^2 of grain surface (h the finest cell; an isolated sphere has
+     * 10.7), at most half the box's volume in cells of h (dense packs share
+     * cells), 25 DoFs per cell in 3D (9 in 2D, Q2-Q1) and 3 kB per DoF
+     * (2 kB matrix free; measured 3-6 kB, user_guide.md "Sizing").
+     */
+    template <int dim>
+    void
+    check_memory_estimate(const core::Parameters<dim>        &parameters,
+                          const std::vector<dem::Grain<dim>> &grains,
+                          const double                        min_diameter,
+                          const MPI_Comm                      comm);
+
     /// The penalized Navier-Stokes solver of a scene on @p triangulation.
     template <int dim>
     std::unique_ptr<fluid::PenalizedNavierStokes<dim>>

@@ -1,0 +1,117 @@
+// simulation control/restart = true with a checkpoint another scene wrote
+// (another parameter file's run in the same output directory, or this
+// scene with other mesh entries) crashed in deal.II's SolutionTransfer
+// (segfault). The checkpoint now keeps the scene's fingerprint: a restart
+// from another scene's stops with a message naming each entry that
+// differs with its old and new value; the scene's own restarts; a
+// checkpoint of an earlier version (no fingerprint) restarts after a
+// warning. A transient fluid scene (8 coarse cells, no grains).
+
+#include <deal.II/base/mpi.h>
+
+#include <softsand/base/parameter_tools.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "test_scenes.h"
+#include "tests.h"
+
+namespace
+{
+  std::string
+  scene(const unsigned int max_steps,
+        const bool         restart,
+        const std::string &extra = "")
+  {
+    std::ostringstream text;
+    text << "set dimension = 3\n"
+            "subsection simulation control\n set mode = transient\n"
+            " set time step = 1e-3\n set end time = 1\n"
+            " set checkpoint interval = 1\n set max time steps = "
+         << max_steps << "\n set restart = " << (restart ? "true" : "false")
+         << "\nend\n"
+            "subsection mesh\n set lower corner = 0, 0, 0\n"
+            " set upper corner = 1e-3, 1e-3, 1e-3\n"
+            " set coarse cells = 2, 2, 2\n set cells per diameter = 0\nend\n"
+            "subsection fluid\n set viscosity = 1e-3\nend\n"
+            "subsection boundary conditions\n subsection x min\n"
+            "  set type = velocity\n  set velocity = 1e-3, 0, 0\n end\n"
+            " subsection x max\n  set type = pressure\n end\nend\n"
+            "subsection output\n set directory = results\n"
+            " set write vtu = false\n set verbosity = quiet\nend\n"
+         << extra;
+    return text.str();
+  }
+
+  void
+  run(const std::string &what, const std::string &prm_text)
+  {
+    try
+      {
+        const auto row = run_scene<3>(prm_text);
+        deallog << what << ": ran to step "
+                << static_cast<unsigned int>(row.at("step"))
+                << ", outflow / inflow " << std::setprecision(4)
+                << row.at("outflow_rate") / row.at("flow_rate") << std::endl;
+      }
+    catch (const std::exception &e)
+      {
+        deallog << what << ": " << softsand::base::error_message(e)
+                << std::endl;
+      }
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  initlog();
+
+  run("fresh run, 2 steps", scene(2, false));
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    {
+      std::ifstream info("results/checkpoint.info");
+      for (std::string line; std::getline(info, line);)
+        if (line.rfind("scene ", 0) == 0 &&
+            line.find("hash") == std::string::npos)
+          deallog << "checkpoint.info: " << line << std::endl;
+    }
+
+  run("restart with other coarse cells",
+      scene(3, true, "subsection mesh\n set coarse cells = 3, 3, 3\nend\n"));
+  run("restart with another box and grain",
+      scene(3,
+            true,
+            "subsection mesh\n set upper corner = 2e-3, 1e-3, 1e-3\nend\n"
+            "subsection grains\n set source = list\n"
+            " set list = 5e-4, 5e-4, 5e-4, 1e-4\nend\n"));
+  run("restart with other global refinements",
+      scene(3, true, "subsection mesh\n set global refinements = 1\nend\n"));
+  run("restart, numbers written otherwise",
+      scene(3,
+            true,
+            "subsection mesh\n set upper corner = 0.001, 1.0e-3, 1e-03\n"
+            " set coarse cells = 2,2,2\nend\n"));
+
+  // A checkpoint of an earlier version: no fingerprint.
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    {
+      std::ifstream     in("results/checkpoint.info");
+      std::stringstream kept;
+      for (std::string line; std::getline(in, line);)
+        if (line.rfind("scene ", 0) != 0)
+          kept << line << '\n';
+      in.close();
+      std::ofstream("results/checkpoint.info") << kept.str();
+    }
+  MPI_Barrier(MPI_COMM_WORLD);
+  run("restart from a checkpoint without fingerprint", scene(4, true));
+  deallog << "warned that the fingerprint is missing: "
+          << (warned("without the scene's fingerprint") ? "yes" : "no")
+          << std::endl;
+  // The new checkpoint has one again.
+  run("restart with other coarse cells",
+      scene(5, true, "subsection mesh\n set coarse cells = 1, 1, 1\nend\n"));
+}
