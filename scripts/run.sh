@@ -8,8 +8,12 @@ bash scripts/setup.sh
 scene="${1:-parameters/drag_sphere.prm}"
 source scripts/mpi_env.sh
 ranks="${SOFTSAND_RANKS:-1}"
+# A run owns its output directory (a second run into it is refused): each
+# call of this script writes to a new one, named by the scene and the time.
+outdir="output/$(basename "$scene" .prm)-$(date +%Y%m%d-%H%M%S)"
+echo "softsand run: output in $outdir"
 if [ "$ranks" -gt 1 ]; then
-  mpirun -np "$ranks" build/softsand "$scene"
+  mpirun -np "$ranks" build/softsand "$scene" --set "output/directory=$outdir"
 else
-  build/softsand "$scene"
+  build/softsand "$scene" --set "output/directory=$outdir"
 fi
