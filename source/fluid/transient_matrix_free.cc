@@ -787,6 +787,28 @@ namespace softsand
       const bool            penalized = solid_field != nullptr && !rigid_nodes();
       constexpr unsigned int n_p = LocalTensors<dim>::n_p;
       constexpr unsigned int n_q = Utilities::pow(3, dim);
+      // The right-hand side of assemble() at a point x:
+      // f - rho* / dt (a1 u~^n + a2 u~^(n-1)), u~ = vf u + (1 - vf) u_s.
+      const auto right_hand_side = [&](const Point<dim>     &x,
+                                       const Tensor<1, dim> &u_old,
+                                       const Tensor<1, dim> &u_older,
+                                       const double          vf,
+                                       const Tensor<1, dim> &u_s) {
+        Tensor<1, dim> f = transient_matrix_free->body_force_value;
+        if (!transient_matrix_free->constant_body_force)
+          {
+            Vector<double> value(dim);
+            body_force->vector_value(x, value);
+            for (unsigned int d = 0; d < dim; ++d)
+              f[d] = value[d];
+          }
+        const double solid    = 1. - vf;
+        const double rho_star = rho * (1. + fluid_parameters.theta * solid);
+        return Tensor<1, dim>(
+          f - rho_star / dt *
+                (bdf.a1 * (vf * u_old + solid * u_s) +
+                 bdf.a2 * (vf * u_older + solid * u_s)));
+      };
       const auto &partitioner_u = *matrix_free.get_vector_partitioner(0);
       const auto &partitioner_p = *matrix_free.get_vector_partitioner(1);
       const unsigned int owned_u = partitioner_u.locally_owned_size();
@@ -963,18 +985,8 @@ namespace softsand
                       bdf.a0 * rho_star / dt + 0.5 * rho * div_w;
                     for (unsigned int d = 0; d < dim; ++d)
                       coefficients.advection(batch, q)[d][lane] = rho * w[d];
-                    Tensor<1, dim> f = data.body_force_value;
-                    if (!data.constant_body_force)
-                      {
-                        body_force->vector_value(points[q], force_value);
-                        for (unsigned int d = 0; d < dim; ++d)
-                          f[d] = force_value[d];
-                      }
-                    const Tensor<1, dim> right =
-                      f - rho_star / dt *
-                            (bdf.a1 * (vf * u_old + solid * solid_velocity[q]) +
-                             bdf.a2 *
-                               (vf * u_older + solid * solid_velocity[q]));
+                    const Tensor<1, dim> right = right_hand_side(
+                      points[q], u_old, u_older, vf, solid_velocity[q]);
                     for (unsigned int d = 0; d < dim; ++d)
                       rhs_values[q][d][lane] = right[d];
                   }
@@ -1477,21 +1489,9 @@ namespace softsand
                           for (unsigned int d = 0; d < dim; ++d)
                             u_oo[d] = v2[d][lane];
                         }
-                      const double vf    = void_fraction[q];
-                      const double solid = 1. - vf;
-                      const double rho_star =
-                        rho * (1. + fluid_parameters.theta * solid);
-                      Tensor<1, dim> f = data.body_force_value;
-                      if (!data.constant_body_force)
-                        {
-                          body_force->vector_value(points[q], force_value);
-                          for (unsigned int d = 0; d < dim; ++d)
-                            f[d] = force_value[d];
-                        }
-                      const Tensor<1, dim> right =
-                        f - rho_star / dt *
-                              (bdf.a1 * (vf * u_o + solid * solid_velocity[q]) +
-                               bdf.a2 * (vf * u_oo + solid * solid_velocity[q]));
+                      const Tensor<1, dim> right = right_hand_side(
+                        points[q], u_o, u_oo, void_fraction[q],
+                        solid_velocity[q]);
                       for (unsigned int d = 0; d < dim; ++d)
                         force[d][lane] -= right[d];
                     }
