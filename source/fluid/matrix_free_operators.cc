@@ -12,6 +12,55 @@ namespace softsand
 {
   namespace fluid
   {
+    void
+    split_block_constraints(const AffineConstraints<double> &combined,
+                            const types::global_dof_index    n_velocity,
+                            const IndexSet &relevant_velocity,
+                            const IndexSet &relevant_pressure,
+                            AffineConstraints<double> &velocity,
+                            AffineConstraints<double> &pressure,
+                            AffineConstraints<double> *pressure_values)
+    {
+      velocity.clear();
+      velocity.reinit(relevant_velocity);
+      pressure.clear();
+      pressure.reinit(relevant_pressure);
+      if (pressure_values != nullptr)
+        {
+          pressure_values->clear();
+          pressure_values->reinit(relevant_pressure);
+        }
+      const auto copy_line = [n_velocity](const auto                &line,
+                                          AffineConstraints<double> &c) {
+        const bool velocity_line = line.index < n_velocity;
+        const types::global_dof_index shift = velocity_line ? 0 : n_velocity;
+        c.add_line(line.index - shift);
+        for (const auto &[column, weight] : line.entries)
+          {
+            Assert((column < n_velocity) == velocity_line, ExcInternalError());
+            c.add_entry(line.index - shift, column - shift, weight);
+          }
+      };
+      for (const auto &line : combined.get_lines())
+        if (line.index < n_velocity)
+          copy_line(line, velocity);
+        else
+          {
+            copy_line(line, pressure);
+            if (pressure_values != nullptr)
+              {
+                copy_line(line, *pressure_values);
+                pressure_values->set_inhomogeneity(line.index - n_velocity,
+                                                   line.inhomogeneity);
+              }
+          }
+      velocity.close();
+      pressure.close();
+      if (pressure_values != nullptr)
+        pressure_values->close();
+    }
+
+
     template <typename Number>
     std::vector<unsigned int>
     constrained_local_rows(const Utilities::MPI::Partitioner &partitioner,

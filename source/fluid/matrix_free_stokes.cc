@@ -265,39 +265,14 @@ namespace softsand
 
         // Homogeneous copies of the combined constraints, split by block
         // (and the pressure ones with their values for the smoothing).
-        data.velocity_constraints.clear();
-        data.velocity_constraints.reinit(relevant_partitioning[0]);
-        data.pressure_constraints.clear();
-        data.pressure_constraints.reinit(relevant_partitioning[1]);
-        if (smooth)
-          pressure_lifting_constraints.reinit(relevant_partitioning[1]);
-        const auto copy_line = [n_u](const auto                &line,
-                                     AffineConstraints<double> &c) {
-          const bool                    velocity_line = line.index < n_u;
-          const types::global_dof_index shift = velocity_line ? 0 : n_u;
-          c.add_line(line.index - shift);
-          for (const auto &[column, weight] : line.entries)
-            {
-              Assert((column < n_u) == velocity_line, ExcInternalError());
-              c.add_entry(line.index - shift, column - shift, weight);
-            }
-        };
-        for (const auto &line : constraints.get_lines())
-          if (line.index < n_u)
-            copy_line(line, data.velocity_constraints);
-          else
-            {
-              copy_line(line, data.pressure_constraints);
-              if (smooth)
-                {
-                  copy_line(line, pressure_lifting_constraints);
-                  pressure_lifting_constraints.set_inhomogeneity(
-                    line.index - n_u, line.inhomogeneity);
-                }
-            }
-        data.velocity_constraints.close();
-        data.pressure_constraints.close();
-        pressure_lifting_constraints.close();
+        split_block_constraints(constraints,
+                                n_u,
+                                relevant_partitioning[0],
+                                relevant_partitioning[1],
+                                data.velocity_constraints,
+                                data.pressure_constraints,
+                                smooth ? &pressure_lifting_constraints :
+                                         nullptr);
 
         typename MatrixFree<dim, double>::AdditionalData additional_data;
         additional_data.tasks_parallel_scheme =

@@ -274,6 +274,25 @@ namespace softsand
       };
 
 
+      /// The do-nothing condition's -p_b (v . n) on the face @p face_values
+      /// was reinitialized on, added to @p local (the pressure faces'
+      /// right-hand side, also in the walls' reaction).
+      template <int dim>
+      void
+      add_pressure_face_term(const FEFaceValues<dim> &face_values,
+                             const double             p_b,
+                             Vector<double>          &local)
+      {
+        const FEValuesExtractors::Vector velocities(0);
+        for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
+          for (unsigned int i = 0; i < local.size(); ++i)
+            local(i) -= p_b *
+                        (face_values[velocities].value(i, q) *
+                         face_values.normal_vector(q)) *
+                        face_values.JxW(q);
+      }
+
+
       /**
        * Block upper-triangular preconditioner of the transient matrix-free
        * step: p = -X^-1 r_p (one AMG V-cycle on X = B D^-1 B^T + C), then u
@@ -463,33 +482,13 @@ namespace softsand
                                          mesh);
         mesh.close();
       }
-      data.velocity_constraints.reinit(relevant_partitioning[0]);
-      data.pressure_constraints.reinit(relevant_partitioning[1]);
-      data.pressure_values.reinit(relevant_partitioning[1]);
-      for (const auto &line : mesh.get_lines())
-        {
-          const bool velocity_line = line.index < n_u;
-          const types::global_dof_index shift = velocity_line ? 0 : n_u;
-          auto &c = velocity_line ? data.velocity_constraints :
-                                    data.pressure_constraints;
-          c.add_line(line.index - shift);
-          if (!velocity_line)
-            data.pressure_values.add_line(line.index - shift);
-          for (const auto &[column, weight] : line.entries)
-            {
-              c.add_entry(line.index - shift, column - shift, weight);
-              if (!velocity_line)
-                data.pressure_values.add_entry(line.index - shift,
-                                               column - shift,
-                                               weight);
-            }
-          if (!velocity_line)
-            data.pressure_values.set_inhomogeneity(line.index - shift,
-                                                   line.inhomogeneity);
-        }
-      data.velocity_constraints.close();
-      data.pressure_constraints.close();
-      data.pressure_values.close();
+      split_block_constraints(mesh,
+                              n_u,
+                              relevant_partitioning[0],
+                              relevant_partitioning[1],
+                              data.velocity_constraints,
+                              data.pressure_constraints,
+                              &data.pressure_values);
 
       typename MatrixFree<dim, double>::AdditionalData additional_data;
       additional_data.tasks_parallel_scheme =
@@ -646,7 +645,6 @@ namespace softsand
                                       face_quadrature,
                                       update_values | update_normal_vectors |
                                         update_JxW_values);
-        const FEValuesExtractors::Vector velocities(0);
         Vector<double> local(fe_velocity.n_dofs_per_cell());
         std::vector<types::global_dof_index> dofs(
           fe_velocity.n_dofs_per_cell());
@@ -662,12 +660,7 @@ namespace softsand
                       .pressure;
                   face_values.reinit(cell, f);
                   local = 0;
-                  for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                    for (unsigned int i = 0; i < local.size(); ++i)
-                      local(i) -= p_b *
-                                  (face_values[velocities].value(i, q) *
-                                   face_values.normal_vector(q)) *
-                                  face_values.JxW(q);
+                  add_pressure_face_term(face_values, p_b, local);
                   cell->get_dof_indices(dofs);
                   data.velocity_constraints.distribute_local_to_global(
                     local, dofs, data.face_rhs);
@@ -1404,7 +1397,7 @@ namespace softsand
                                       face_quadrature,
                                       update_values | update_normal_vectors |
                                         update_JxW_values);
-        const FEValuesExtractors::Vector velocities(0);
+        Vector<double> face_term(fe_velocity.n_dofs_per_cell());
         for (unsigned int batch = 0; batch < n_batches; ++batch)
           for (unsigned int lane = 0;
                lane < matrix_free.n_active_entries_per_cell_batch(batch);
@@ -1557,17 +1550,13 @@ namespace softsand
                             .face(cell->face(f)->boundary_id())
                             .pressure;
                         face_values.reinit(cell, f);
-                        for (unsigned int q = 0; q < face_quadrature.size();
-                             ++q)
-                          for (unsigned int i = 0; i < u_dofs.size(); ++i)
-                            if (on_face[i])
-                              boundary_force
-                                [fe_velocity.system_to_component_index(i)
-                                   .first] -=
-                                p_b *
-                                (face_values[velocities].value(i, q) *
-                                 face_values.normal_vector(q)) *
-                                face_values.JxW(q);
+                        face_term = 0;
+                        add_pressure_face_term(face_values, p_b, face_term);
+                        for (unsigned int i = 0; i < u_dofs.size(); ++i)
+                          if (on_face[i])
+                            boundary_force
+                              [fe_velocity.system_to_component_index(i)
+                                 .first] += face_term(i);
                       }
                 }
             }

@@ -302,6 +302,23 @@ namespace softsand
     };
 
 
+    /**
+     * Split the constraints @p combined of the combined Taylor-Hood handler
+     * (velocity block first, @p n_velocity DoFs) by block, renumbered like
+     * the separate handlers: @p velocity and @p pressure homogeneous, and,
+     * if given, @p pressure_values the pressure ones with their values
+     * (the lifting of assembled pressure blocks). All are reinitialized on
+     * the relevant sets and closed.
+     */
+    void
+    split_block_constraints(const AffineConstraints<double> &combined,
+                            const types::global_dof_index    n_velocity,
+                            const IndexSet &relevant_velocity,
+                            const IndexSet &relevant_pressure,
+                            AffineConstraints<double> &velocity,
+                            AffineConstraints<double> &pressure,
+                            AffineConstraints<double> *pressure_values);
+
     /// Locally owned rows (local indices) constrained in @p constraints.
     template <typename Number>
     std::vector<unsigned int>
