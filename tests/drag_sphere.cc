@@ -21,7 +21,8 @@ main(int argc, char **argv)
   initlog();
   std::stringstream text;
   text << scene_text("drag_sphere")
-       << "subsection mesh\n set cells per diameter = 4\nend\n";
+       << "subsection mesh\n set cells per diameter = 4\nend\n"
+       << "subsection postprocessing\n set eq7 forces = true\nend\n";
 
   const auto parallel = run_scene<3>(text.str(), MPI_COMM_WORLD);
   const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);

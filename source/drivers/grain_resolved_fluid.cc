@@ -213,20 +213,24 @@ namespace softsand
       eq7_forces      = coupling::GrainForces<dim>();
       if (!grain_list.empty())
         {
+          TimerOutput::Scope t(timer, "postprocess: grain forces");
           reaction_forces = coupling::compute_grain_forces(
             *navier_stokes,
             grain_list,
             coupling::ForceModel::penalization_reaction,
             mpi_communicator);
-          eq7_forces = coupling::compute_grain_forces(
-            *navier_stokes,
-            grain_list,
-            coupling::ForceModel::stress_divergence,
-            mpi_communicator);
+          if (parameters.postprocessing.eq7_forces ||
+              parameters.coupling.paper_force)
+            eq7_forces = coupling::compute_grain_forces(
+              *navier_stokes,
+              grain_list,
+              coupling::ForceModel::stress_divergence,
+              mpi_communicator);
         }
       pores.reset();
       if (!grain_list.empty())
         {
+          TimerOutput::Scope t(timer, "postprocess: pore connectivity");
           // The paper's cell-average penalization closes a cell by any
           // covered part; the other rules by most of it.
           postprocess::OpenCellRule rule;
@@ -253,10 +257,14 @@ namespace softsand
                                                      write_files,
                                                      pores.get()};
       postprocess::Columns row;
-      for (const auto &source : columns)
-        source->add_columns(snapshot, row);
+      {
+        TimerOutput::Scope t(timer, "postprocess: columns");
+        for (const auto &source : columns)
+          source->add_columns(snapshot, row);
+      }
       if (write_files)
         {
+          TimerOutput::Scope t(timer, "postprocess: files");
           write_fields(time);
           if (parameters.postprocessing.write_grain_forces &&
               !grain_list.empty())
@@ -311,15 +319,21 @@ namespace softsand
       const std::string name = parameters.output.directory + "/grain_forces.txt";
       {
         std::ofstream out(name + ".tmp");
+        const bool eq7 = !eq7_forces.force.empty();
         out << "# grain x y" << (dim == 3 ? " z" : "") << " radius fx fy"
-            << (dim == 3 ? " fz" : "") << " tx ty tz eq7_fx eq7_fy"
-            << (dim == 3 ? " eq7_fz" : "") << '\n'
-            << std::setprecision(10);
+            << (dim == 3 ? " fz" : "") << " tx ty tz";
+        if (eq7)
+          out << " eq7_fx eq7_fy" << (dim == 3 ? " eq7_fz" : "");
+        out << '\n' << std::setprecision(10);
         for (unsigned int g = 0; g < grain_list.size(); ++g)
-          out << g << ' ' << grain_list[g].center << ' '
-              << grain_list[g].radius << ' ' << reaction_forces.force[g] << ' '
-              << reaction_forces.torque[g] << ' ' << eq7_forces.force[g]
-              << '\n';
+          {
+            out << g << ' ' << grain_list[g].center << ' '
+                << grain_list[g].radius << ' ' << reaction_forces.force[g]
+                << ' ' << reaction_forces.torque[g];
+            if (eq7)
+              out << ' ' << eq7_forces.force[g];
+            out << '\n';
+          }
       }
       std::rename((name + ".tmp").c_str(), name.c_str());
     }

@@ -342,10 +342,14 @@ namespace softsand
         "(Navier-Stokes, transient) and grad-div are matrix based.");
       prm.declare_entry(
         "transient solver",
-        "matrix based",
-        Patterns::Selection("matrix free|matrix based"),
+        "auto",
+        Patterns::Selection("auto|matrix free|matrix based"),
         "The solver of the transient model's time steps (Navier-Stokes with "
-        "BDF, the coupled injections). matrix based: the system assembled "
+        "BDF, the coupled injections). auto: matrix free with fluid/solid "
+        "model = rigid nodes and no grad div, where it is measured faster; "
+        "matrix based with the penalization, whose contrast in the "
+        "velocity block's diagonal slows the matrix-free path's Schur "
+        "solve (doc/solver_study.md). matrix based: the system assembled "
         "into Trilinos matrices at every step, velocity block by ML AMG with "
         "ILU smoothing, the least-squares commutator (above); matrix free: "
         "the same discrete step with the Q2-Q1 operator applied cell by "
@@ -443,6 +447,7 @@ namespace softsand
       linear_solver            = prm.get("linear solver") == "matrix free" ?
                                    LinearSolver::matrix_free :
                                    LinearSolver::matrix_based;
+      transient_solver_automatic = prm.get("transient solver") == "auto";
       transient_solver         = prm.get("transient solver") == "matrix free" ?
                                    LinearSolver::matrix_free :
                                    LinearSolver::matrix_based;

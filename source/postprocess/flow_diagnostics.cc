@@ -60,6 +60,16 @@ namespace softsand
                         Patterns::Bool(),
                         "Write grain_forces.txt (force and torque per "
                         "grain) at each output.");
+      prm.declare_entry("eq7 forces",
+                        "false",
+                        Patterns::Bool(),
+                        "Compute the paper's Eq. 7 fluid force on each grain "
+                        "(the stress divergence over the grain's cells) "
+                        "beside the reaction force, as a diagnostic: the "
+                        "eq7_* statistics columns and grain_forces.txt "
+                        "columns. It costs one more pass over the cells "
+                        "every step, so it is off unless asked for; always "
+                        "on with coupling/force model = paper eq7.");
       prm.leave_subsection();
     }
 
@@ -82,6 +92,7 @@ namespace softsand
       exact_velocity     = prm.get("exact velocity");
       exact_pressure     = prm.get("exact pressure");
       write_grain_forces = prm.get_bool("write grain forces");
+      eq7_forces         = prm.get_bool("eq7 forces");
       prm.leave_subsection();
     }
 

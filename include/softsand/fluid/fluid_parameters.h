@@ -142,8 +142,11 @@ namespace softsand
       /// Growth of that cfl per Picard iteration once the change falls.
       double pseudo_time_growth = 2;
       LinearSolver linear_solver            = LinearSolver::matrix_based;
-      /// The solver of the transient model's steps (advance()).
-      LinearSolver transient_solver         = LinearSolver::matrix_based;
+      /// The solver of the transient model's steps (advance()), when the
+      /// user chose one; automatic: PenalizedNavierStokes decides from the
+      /// solid model (transient_solver is then not read).
+      LinearSolver transient_solver           = LinearSolver::matrix_based;
+      bool         transient_solver_automatic = true;
       /// Geometric multigrid of the matrix-free velocity block.
       unsigned int smoother_degree = 4;
       double       smoothing_range = 20;

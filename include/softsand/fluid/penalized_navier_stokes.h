@@ -325,7 +325,13 @@ namespace softsand
       bool
       use_transient_matrix_free() const
       {
-        // Grad-div is refused with it (SolverParameters).
+        // Grad-div is refused with it (SolverParameters). Not
+        // rigid_nodes(): the choice is made before grains attach.
+        if (solver_parameters.transient_solver_automatic)
+          return fluid_parameters.solid_model ==
+                   FluidParameters::SolidModel::rigid_nodes &&
+                 solver_parameters.grad_div == 0 &&
+                 solver_parameters.grad_div_cell_factor == 0;
         return solver_parameters.transient_solver ==
                SolverParameters::LinearSolver::matrix_free;
       }

@@ -30,6 +30,9 @@ namespace softsand
       std::string         exact_velocity;
       std::string         exact_pressure;
       bool                write_grain_forces = true;
+      /// Compute the paper's Eq. 7 force on each grain beside the reaction
+      /// force (a diagnostic: one more pass over the cells every step).
+      bool                eq7_forces = false;
 
       static void
       declare_parameters(ParameterHandler &prm);

@@ -28,10 +28,13 @@ namespace softsand
       const std::string    axis_name(1, names[flow_axis]);
       const Tensor<1, dim> total     = s.forces.total_force();
       const Tensor<1, dim> total_eq7 = s.forces_eq7.total_force();
+      // The Eq. 7 forces only when they were computed (on request).
+      const bool eq7 = !s.forces_eq7.force.empty();
       for (unsigned int d = 0; d < dim; ++d)
         {
-          row[std::string("grain_force_") + names[d]]     = total[d];
-          row[std::string("eq7_grain_force_") + names[d]] = total_eq7[d];
+          row[std::string("grain_force_") + names[d]] = total[d];
+          if (eq7)
+            row[std::string("eq7_grain_force_") + names[d]] = total_eq7[d];
         }
       row["boundary_force_" + axis_name] =
         boundary_traction(s.fluid.get_dof_handler(),
@@ -53,7 +56,8 @@ namespace softsand
       if (dim == 3)
         {
           row["stokes_drag_ratio"] = F / (3 * M_PI * viscosity * d * U);
-          row["eq7_stokes_drag_ratio"] =
+          if (eq7)
+            row["eq7_stokes_drag_ratio"] =
             s.forces_eq7.force[0][flow_axis] / (3 * M_PI * viscosity * d * U);
         }
       row["reynolds_number"] = density * U * d / viscosity;
