@@ -71,9 +71,6 @@ namespace softsand
 
 
     template <int dim>
-
-
-    template <int dim>
     PenalizedNavierStokes<dim>::PenalizedNavierStokes(
       parallel::distributed::Triangulation<dim> &tria,
       const FluidParameters                     &fluid_parameters,
