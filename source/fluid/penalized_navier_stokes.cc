@@ -1,4 +1,5 @@
 #include <softsand/fluid/block_schur_preconditioner.h>
+#include <softsand/fluid/penalization_limit.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 #include <softsand/base/parameter_tools.h>
 #include <softsand/base/warnings.h>
@@ -85,6 +86,24 @@ namespace softsand
         , dof_handler_velocity(tria)
         , dof_handler_pressure(tria)
     {
+      // The matrix-free operators know rigid nodes and the penalty, not the
+      // blended constraints of the penalization limit.
+      if (fluid_parameters.solid_model ==
+          FluidParameters::SolidModel::penalization_limit)
+        {
+          if (solver_parameters.transient_solver ==
+              SolverParameters::LinearSolver::matrix_free)
+            base::throw_invalid_parameter(
+              "fluid solver/transient solver",
+              "matrix free",
+              "fluid/solid model = penalization limit needs 'matrix based'");
+          if (solver_parameters.linear_solver ==
+              SolverParameters::LinearSolver::matrix_free)
+            base::throw_invalid_parameter(
+              "fluid solver/linear solver",
+              "matrix free",
+              "fluid/solid model = penalization limit needs 'matrix based'");
+        }
       body_force = std::make_unique<FunctionParser<dim>>(dim);
       std::string expr = fluid_parameters.body_force;
       // Accept a 3-component default in 2D by dropping the z component.
@@ -341,13 +360,18 @@ namespace softsand
                                        boundary_conditions.perimeter_region(),
                                        constraints);
       rigid_dof_grain.clear();
+      rigid_dof_shares.clear();
       hanging_rigid_parents.clear();
-      if (with_solids && (rigid_nodes() || constrained_interiors()))
+      if (with_solids &&
+          (rigid_nodes() || constrained_interiors() || penalization_limit()))
         {
-          add_solid_constraints(dof_handler,
-                                constraints,
-                                rigid_nodes() ? rigid_node_inflation() : 0.,
-                                &rigid_dof_grain);
+          if (penalization_limit())
+            add_penalization_limit_constraints();
+          else
+            add_solid_constraints(dof_handler,
+                                  constraints,
+                                  rigid_nodes() ? rigid_node_inflation() : 0.,
+                                  &rigid_dof_grain);
 
           // Hanging nodes whose parents are rigid carry part of the grain's
           // reaction; close() below resolves those parents away, so keep
@@ -408,6 +432,49 @@ namespace softsand
       const auto hanging = hanging_rigid_parents.find(i);
       return entries->empty() || (hanging != hanging_rigid_parents.end() &&
                                   hanging->second.size() == entries->size());
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::add_penalization_limit_constraints()
+    {
+      // The Theta -> infinity limit of rho* (u^{n+1} - u~) / dt with
+      // u~ = vf u^n + (1 - vf) u_s is u^{n+1} = u~ (BDF1, the paper's
+      // update), taken per node with one blended u_s (penalization_limit.h);
+      // its fixed point, in steady solves, is u = u_s. setup_dofs() asks
+      // before the solutions have the new mesh's layout: only which DoFs
+      // are fixed matters there.
+      const bool transient =
+        !last_was_steady && old_solution.size() == dof_handler.n_dofs();
+      const auto nodes = penalization_limit_nodes<dim>(
+        dof_handler,
+        [this](const CellAccessor<dim, dim>  &cell,
+               const std::vector<Point<dim>> &points,
+               std::vector<double>           &vf,
+               std::vector<Tensor<1, dim>>   &u_s,
+               std::vector<int>              &grain) {
+          solid_field->evaluate(cell, points, vf, u_s, grain);
+        },
+        [this](const CellAccessor<dim, dim> &cell) {
+          return is_free_contact_cell(cell);
+        });
+      // Boundary, hanging-node and pressure-region constraints keep
+      // priority.
+      for (const auto &[i, node] : nodes)
+        if (!constraints.is_constrained(i) && constraints.can_store_line(i))
+          {
+            const double old_velocity = transient ? old_solution(i) : 0.;
+            const double value =
+              transient ? node.void_fraction * old_velocity +
+                            (1. - node.void_fraction) * node.target :
+                          node.target;
+            constraints.add_line(i);
+            constraints.set_inhomogeneity(i, value);
+            rigid_dof_grain[i] = node.grain_shares.front().first;
+            if (node.grain_shares.size() > 1)
+              rigid_dof_shares[i] = node.grain_shares;
+          }
     }
 
 
@@ -839,8 +906,9 @@ namespace softsand
             local_rhs     = 0;
             scalar_block  = 0;
 
-            // Rigid nodes: the grain acts through constraints only.
-            if (solid_field != nullptr && !rigid_nodes())
+            // Rigid nodes, penalization limit: the grain acts through
+            // constraints only.
+            if (solid_field != nullptr && !constrains_solids())
               evaluate_solids(
                 *cell,
                 fe_values.get_quadrature_points(),
@@ -1589,15 +1657,26 @@ namespace softsand
                                          fe_values.quadrature_point(k),
                                          f);
           };
+          // A node whose target blends grains (penalization limit) hands
+          // each its share of the reaction.
+          const auto add_node = [&](const unsigned int            k,
+                                    const types::global_dof_index i,
+                                    const double                  weight) {
+            const auto shares = rigid_dof_shares.find(i);
+            if (shares == rigid_dof_shares.end())
+              add(k, rigid_dof_grain.at(i), weight);
+            else
+              for (const auto &[grain, share] : shares->second)
+                add(k, grain, weight * share);
+          };
           for (unsigned int k = 0; k < dofs.size(); ++k)
             {
-              const auto node = rigid_dof_grain.find(dofs[k]);
-              if (node != rigid_dof_grain.end())
-                add(k, node->second, 1.);
+              if (rigid_dof_grain.count(dofs[k]))
+                add_node(k, dofs[k], 1.);
               const auto hanging = hanging_rigid_parents.find(dofs[k]);
               if (hanging != hanging_rigid_parents.end())
                 for (const auto &[parent, weight] : hanging->second)
-                  add(k, rigid_dof_grain.at(parent), weight);
+                  add_node(k, parent, weight);
             }
         };
       // assemble() asks the filter about a cell right before it hands that
@@ -1886,7 +1965,7 @@ namespace softsand
       // of the fluid on the grain.
       for (const auto &[grain, point, force] : rigid_reactions)
         f(grain, point, force);
-      if (rigid_nodes())
+      if (constrains_solids())
         return;
       // The penalty force density g = rho* (1 - vf) E / dt on the fluid,
       // less the physical inertia of the fluid the grain displaces, with
