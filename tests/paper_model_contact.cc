@@ -2,8 +2,8 @@
 // cells per diameter, cell-average void fraction, three transient BDF steps
 // of 0.25 ms from rest (rho 1000 kg/m^3, mu 0.01 Pa s, the small Hele-Shaw
 // injection's fluid and step) with grain A moving and grain B at rest, the
-// forces of the third step: A slides along B (0.1 m/s), approaches B (0.1 m/s), rotates
-// about the plates' normal (0.1 m/s at its surface). The paper's
+// forces of the third step: A slides along B (0.1 m/s), approaches B (0.1 m/s),
+// rotates about the plates' normal (0.1 m/s at its surface). The paper's
 // penalization asks the Q2 nodes of the cells the grains share to follow
 // two rigid motions, and the force of that conflict grows with Theta
 // (printed at Theta = 1e4, 1e5, 1e6); the penalization limit gives each
@@ -19,9 +19,9 @@
 
 #include <deal.II/grid/grid_generator.h>
 
+#include <softsand/core/parameters.h>
 #include <softsand/coupling/grain_forces.h>
 #include <softsand/coupling/grain_solid_field.h>
-#include <softsand/core/parameters.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 
 #include <sstream>
@@ -67,7 +67,8 @@ namespace
          << theta << "\n set solid model = " << model
          << "\n set free contact cells = false\n"
             " set rigid node pressure smoothing = "
-         << pressure_smoothing << "\nend\n"
+         << pressure_smoothing
+         << "\nend\n"
             "subsection fluid solver\n set linear tolerance = 1e-10\nend\n"
             "subsection coupling\n set void fraction model = cell average\n"
             "end\n"
@@ -102,11 +103,9 @@ namespace
       grains[0].angular_velocity[2] = speed / radius;
     coupling::GrainSolidField<3> solids(grains, p.void_fraction);
 
-    std::ostringstream                  quiet;
-    ConditionalOStream                  pcout(quiet, false);
-    TimerOutput                         timer(quiet,
-                          TimerOutput::never,
-                          TimerOutput::wall_times);
+    std::ostringstream quiet;
+    ConditionalOStream pcout(quiet, false);
+    TimerOutput timer(quiet, TimerOutput::never, TimerOutput::wall_times);
     fluid::PenalizedNavierStokes<3> fluid(
       mesh, p.fluid, p.fluid_solver, p.boundary_conditions, pcout, timer);
     fluid.set_solid_field(&solids);
@@ -136,18 +135,18 @@ main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   initlog();
-  const std::pair<Motion, std::string> motions[] = {
-    {Motion::slide, "slide"},
-    {Motion::approach, "approach"},
-    {Motion::rotate, "rotate"}};
+  const std::pair<Motion, std::string> motions[] = {{Motion::slide, "slide"},
+                                                    {Motion::approach,
+                                                     "approach"},
+                                                    {Motion::rotate, "rotate"}};
   for (const auto &[motion, name] : motions)
     {
       const Response rigid = solve("rigid nodes", 1e6, motion);
       const auto     log   = [&](const std::string &label, const Response &r) {
         // Two significant digits: the penalty's ratios span 1e3-1e6.
         deallog << name << ", " << label << ": F_A " << std::scientific
-                << std::setprecision(1) << r.force_a / rigid.force_a
-                << ", F_B " << r.force_b / rigid.force_b;
+                << std::setprecision(1) << r.force_a / rigid.force_a << ", F_B "
+                << r.force_b / rigid.force_b;
         if (motion == Motion::rotate)
           deallog << ", T_A " << r.torque_a / rigid.torque_a;
         deallog << " x rigid nodes" << std::fixed << std::setprecision(6)

@@ -14,20 +14,20 @@ namespace softsand
     template <int dim>
     std::unordered_map<types::global_dof_index, PenalizationLimitNode>
     penalization_limit_nodes(
-      const DoFHandler<dim>                                   &dof,
-      const SolidEvaluator<dim>                               &evaluate,
+      const DoFHandler<dim>                                     &dof,
+      const SolidEvaluator<dim>                                 &evaluate,
       const std::function<bool(const CellAccessor<dim, dim> &)> &skip_cell)
     {
       const FiniteElement<dim> &element = dof.get_fe();
       // The velocity components share the first base element (Q2).
-      const FiniteElement<dim> &scalar = element.base_element(0);
+      const FiniteElement<dim> &scalar   = element.base_element(0);
       const unsigned int        n_scalar = scalar.n_dofs_per_cell();
 
       // One evaluation of the solids per cell: Gauss points (for the
       // integrals int_K (1 - vf) phi_k) followed by the scalar element's
       // support points (for the grain over each node), weights 0 there.
       const QGauss<dim>       gauss(scalar.degree + 1);
-      const unsigned int      n_q = gauss.size();
+      const unsigned int      n_q         = gauss.size();
       std::vector<Point<dim>> unit_points = gauss.get_points();
       std::vector<double>     weights     = gauss.get_weights();
       for (const auto &p : scalar.get_unit_support_points())
@@ -52,17 +52,16 @@ namespace softsand
 
       std::vector<types::global_dof_index> dof_indices(
         element.n_dofs_per_cell());
-      std::vector<double>         vf, solid_integral(n_scalar),
-        integral(n_scalar);
+      std::vector<double> vf, solid_integral(n_scalar), integral(n_scalar);
       std::vector<Tensor<1, dim>> u_s;
       std::vector<int>            grain;
-      const auto integrate = [&](std::vector<double> &result, const bool solid) {
+      const auto                  integrate = [&](std::vector<double> &result,
+                                 const bool           solid) {
         std::fill(result.begin(), result.end(), 0.);
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const double factor =
-              (solid ? (grain[q] >= 0 ? 1. - vf[q] : 0.) : 1.) *
-              values.JxW(q);
+              (solid ? (grain[q] >= 0 ? 1. - vf[q] : 0.) : 1.) * values.JxW(q);
             for (unsigned int a = 0; a < n_scalar; ++a)
               result[a] += factor * values.shape_value(a, q);
           }
@@ -112,8 +111,7 @@ namespace softsand
           {
             cell->get_dof_indices(dof_indices);
             bool near_solid = false;
-            for (unsigned int k = 0; k < dof_indices.size() && !near_solid;
-                 ++k)
+            for (unsigned int k = 0; k < dof_indices.size() && !near_solid; ++k)
               near_solid = sums.count(dof_indices[k]) > 0;
             if (!near_solid)
               continue;
@@ -138,8 +136,8 @@ namespace softsand
         if (skipped.count(i) == 0 && s.volume > 0)
           {
             PenalizationLimitNode &node = nodes[i];
-            node.void_fraction = 1. - std::min(1., s.solid / s.volume);
-            node.target        = s.target / s.solid;
+            node.void_fraction          = 1. - std::min(1., s.solid / s.volume);
+            node.target                 = s.target / s.solid;
             for (const auto &[g, w] : s.grains)
               node.grain_shares.emplace_back(g, w / s.solid);
             // The largest share first: the node's grain where one is named.

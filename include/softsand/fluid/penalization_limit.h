@@ -46,12 +46,11 @@ namespace softsand
     /// The solid field of a cell at points (void fraction, rigid velocity,
     /// solid index), as the assembly sees it.
     template <int dim>
-    using SolidEvaluator =
-      std::function<void(const CellAccessor<dim, dim> &,
-                         const std::vector<Point<dim>> &,
-                         std::vector<double> &,
-                         std::vector<Tensor<1, dim>> &,
-                         std::vector<int> &)>;
+    using SolidEvaluator = std::function<void(const CellAccessor<dim, dim> &,
+                                              const std::vector<Point<dim>> &,
+                                              std::vector<double> &,
+                                              std::vector<Tensor<1, dim>> &,
+                                              std::vector<int> &)>;
 
     /**
      * The velocity DoFs of @p dof (velocity components first, then the
@@ -65,8 +64,8 @@ namespace softsand
     template <int dim>
     std::unordered_map<types::global_dof_index, PenalizationLimitNode>
     penalization_limit_nodes(
-      const DoFHandler<dim>                                   &dof,
-      const SolidEvaluator<dim>                               &evaluate,
+      const DoFHandler<dim>                                     &dof,
+      const SolidEvaluator<dim>                                 &evaluate,
       const std::function<bool(const CellAccessor<dim, dim> &)> &skip_cell);
   } // namespace fluid
 } // namespace softsand
