@@ -23,8 +23,13 @@ namespace softsand
         s.fluid_density = p.fluid.density;
         s.transient     = p.coupling.fluid_model ==
                       coupling::CouplingParameters::FluidModel::transient;
+        // Both constraint models count the covered fluid's mass with the
+        // grain (its nodes' reactions carry that fluid's inertia).
         s.rigid_nodes =
-          p.fluid.solid_model == fluid::FluidParameters::SolidModel::rigid_nodes;
+          p.fluid.solid_model ==
+            fluid::FluidParameters::SolidModel::rigid_nodes ||
+          p.fluid.solid_model ==
+            fluid::FluidParameters::SolidModel::penalization_limit;
         s.added_mass_coefficient = p.coupling.added_mass_coefficient;
         s.buoyancy               = p.coupling.buoyancy;
         s.gravity                = p.dem.gravity;

@@ -70,15 +70,26 @@ namespace softsand
                                          fe_values.quadrature_point(k),
                                          f);
           };
+          // A node whose target blends grains (penalization limit) hands
+          // each its share of the reaction.
+          const auto add_node = [&](const unsigned int            k,
+                                    const types::global_dof_index i,
+                                    const double                  weight) {
+            const auto shares = rigid_dof_shares.find(i);
+            if (shares == rigid_dof_shares.end())
+              add(k, rigid_dof_grain.at(i), weight);
+            else
+              for (const auto &[grain, share] : shares->second)
+                add(k, grain, weight * share);
+          };
           for (unsigned int k = 0; k < dofs.size(); ++k)
             {
-              const auto node = rigid_dof_grain.find(dofs[k]);
-              if (node != rigid_dof_grain.end())
-                add(k, node->second, 1.);
+              if (rigid_dof_grain.count(dofs[k]))
+                add_node(k, dofs[k], 1.);
               const auto hanging = hanging_rigid_parents.find(dofs[k]);
               if (hanging != hanging_rigid_parents.end())
                 for (const auto &[parent, weight] : hanging->second)
-                  add(k, rigid_dof_grain.at(parent), weight);
+                  add_node(k, parent, weight);
             }
         };
       // assemble() asks the filter about a cell right before it hands that
@@ -193,7 +204,7 @@ namespace softsand
       // of the fluid on the grain.
       for (const auto &[grain, point, force] : rigid_reactions)
         f(grain, point, force);
-      if (rigid_nodes())
+      if (constrains_solids())
         return;
       // The penalty force density g = rho* (1 - vf) E / dt on the fluid,
       // less the physical inertia of the fluid the grain displaces, with

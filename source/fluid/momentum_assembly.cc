@@ -258,8 +258,9 @@ namespace softsand
             local_rhs     = 0;
             scalar_block  = 0;
 
-            // Rigid nodes: the grain acts through constraints only.
-            if (solid_field != nullptr && !rigid_nodes())
+            // Rigid nodes, penalization limit: the grain acts through
+            // constraints only.
+            if (solid_field != nullptr && !constrains_solids())
               evaluate_solids(
                 *cell,
                 fe_values.get_quadrature_points(),

@@ -92,6 +92,25 @@ namespace softsand
         , dof_handler_velocity(tria)
         , dof_handler_pressure(tria)
     {
+      // The matrix-free operators know rigid nodes and the penalty, not the
+      // blended constraints of the penalization limit.
+      if (fluid_parameters.solid_model ==
+          FluidParameters::SolidModel::penalization_limit)
+        {
+          if (solver_parameters.transient_solver ==
+              SolverParameters::LinearSolver::matrix_free &&
+              !solver_parameters.transient_solver_automatic)
+            base::throw_invalid_parameter(
+              "fluid solver/transient solver",
+              "matrix free",
+              "fluid/solid model = penalization limit needs 'matrix based'");
+          if (solver_parameters.linear_solver ==
+              SolverParameters::LinearSolver::matrix_free)
+            base::throw_invalid_parameter(
+              "fluid solver/linear solver",
+              "matrix free",
+              "fluid/solid model = penalization limit needs 'matrix based'");
+        }
       body_force = std::make_unique<FunctionParser<dim>>(dim);
       std::string expr = fluid_parameters.body_force;
       // Accept a 3-component default in 2D by dropping the z component.

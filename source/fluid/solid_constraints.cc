@@ -3,6 +3,7 @@
 // solid fraction at the nodes, and the pressures grains enclose.
 
 #include <softsand/fluid/block_schur_preconditioner.h>
+#include <softsand/fluid/penalization_limit.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 #include <softsand/base/parameter_tools.h>
 #include <softsand/base/warnings.h>
@@ -169,13 +170,18 @@ namespace softsand
                                        boundary_conditions.perimeter_region(),
                                        constraints);
       rigid_dof_grain.clear();
+      rigid_dof_shares.clear();
       hanging_rigid_parents.clear();
-      if (with_solids && (rigid_nodes() || constrained_interiors()))
+      if (with_solids &&
+          (rigid_nodes() || constrained_interiors() || penalization_limit()))
         {
-          add_solid_constraints(dof_handler,
-                                constraints,
-                                rigid_nodes() ? rigid_node_inflation() : 0.,
-                                &rigid_dof_grain);
+          if (penalization_limit())
+            add_penalization_limit_constraints();
+          else
+            add_solid_constraints(dof_handler,
+                                  constraints,
+                                  rigid_nodes() ? rigid_node_inflation() : 0.,
+                                  &rigid_dof_grain);
 
           // Hanging nodes whose parents are rigid carry part of the grain's
           // reaction; close() below resolves those parents away, so keep
@@ -236,6 +242,49 @@ namespace softsand
       const auto hanging = hanging_rigid_parents.find(i);
       return entries->empty() || (hanging != hanging_rigid_parents.end() &&
                                   hanging->second.size() == entries->size());
+    }
+
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::add_penalization_limit_constraints()
+    {
+      // The Theta -> infinity limit of rho* (u^{n+1} - u~) / dt with
+      // u~ = vf u^n + (1 - vf) u_s is u^{n+1} = u~ (BDF1, the paper's
+      // update), taken per node with one blended u_s (penalization_limit.h);
+      // its fixed point, in steady solves, is u = u_s. setup_dofs() asks
+      // before the solutions have the new mesh's layout: only which DoFs
+      // are fixed matters there.
+      const bool transient =
+        !last_was_steady && old_solution.size() == dof_handler.n_dofs();
+      const auto nodes = penalization_limit_nodes<dim>(
+        dof_handler,
+        [this](const CellAccessor<dim, dim>  &cell,
+               const std::vector<Point<dim>> &points,
+               std::vector<double>           &vf,
+               std::vector<Tensor<1, dim>>   &u_s,
+               std::vector<int>              &grain) {
+          solid_field->evaluate(cell, points, vf, u_s, grain);
+        },
+        [this](const CellAccessor<dim, dim> &cell) {
+          return is_free_contact_cell(cell);
+        });
+      // Boundary, hanging-node and pressure-region constraints keep
+      // priority.
+      for (const auto &[i, node] : nodes)
+        if (!constraints.is_constrained(i) && constraints.can_store_line(i))
+          {
+            const double old_velocity = transient ? old_solution(i) : 0.;
+            const double value =
+              transient ? node.void_fraction * old_velocity +
+                            (1. - node.void_fraction) * node.target :
+                          node.target;
+            constraints.add_line(i);
+            constraints.set_inhomogeneity(i, value);
+            rigid_dof_grain[i] = node.grain_shares.front().first;
+            if (node.grain_shares.size() > 1)
+              rigid_dof_shares[i] = node.grain_shares;
+          }
     }
 
 
@@ -372,6 +421,8 @@ namespace softsand
     template bool
     PenalizedNavierStokes<2>::is_fixed_velocity(
       const types::global_dof_index i) const;
+    template void
+    PenalizedNavierStokes<2>::add_penalization_limit_constraints();
     template double
     PenalizedNavierStokes<2>::rigid_node_inflation() const;
     template void
@@ -411,6 +462,8 @@ namespace softsand
     template bool
     PenalizedNavierStokes<3>::is_fixed_velocity(
       const types::global_dof_index i) const;
+    template void
+    PenalizedNavierStokes<3>::add_penalization_limit_constraints();
     template double
     PenalizedNavierStokes<3>::rigid_node_inflation() const;
     template void

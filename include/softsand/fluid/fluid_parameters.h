@@ -20,13 +20,15 @@ namespace softsand
       double      density   = 1000;
       double      viscosity = 1e-3;
       double      theta     = 1e6;
-      /// How grains act on the fluid: the paper's penalization (Eq. 6) or
-      /// its Theta -> infinity limit, velocity nodes inside grains
-      /// constrained to the grain's rigid velocity.
+      /// How grains act on the fluid: the paper's penalization (Eq. 6), a
+      /// Theta -> infinity limit with velocity nodes inside grains
+      /// constrained to the grain's rigid velocity, or the limit of the
+      /// penalized update itself node by node (penalization_limit.h).
       enum class SolidModel
       {
         penalization,
-        rigid_nodes
+        rigid_nodes,
+        penalization_limit
       };
       SolidModel solid_model = SolidModel::penalization;
       /// Rigid nodes: nodes within radius + offset * (node spacing) of a

@@ -294,6 +294,12 @@ namespace softsand
         AffineConstraints<double>              &constraints,
         const double                            inflation,
         std::unordered_map<types::global_dof_index, int> *grain_of_dof) const;
+      /// Penalization limit: constrain the velocity nodes that solids
+      /// cover to their blended penalized update (penalization_limit.h)
+      /// and record the grains of each in #rigid_dof_grain and
+      /// #rigid_dof_shares.
+      void
+      add_penalization_limit_constraints();
       /// Distance by which the rigid-node model grows the grains (m).
       double
       rigid_node_inflation() const;
@@ -398,6 +404,21 @@ namespace softsand
                fluid_parameters.solid_model ==
                  FluidParameters::SolidModel::rigid_nodes;
       }
+      /// The Theta -> infinity limit of the penalized update, node by node
+      /// (penalization_limit.h).
+      bool
+      penalization_limit() const
+      {
+        return solid_field != nullptr &&
+               fluid_parameters.solid_model ==
+                 FluidParameters::SolidModel::penalization_limit;
+      }
+      /// The grains act through constraints only, not in the assembly.
+      bool
+      constrains_solids() const
+      {
+        return rigid_nodes() || penalization_limit();
+      }
       /// 'schur inner solver' with auto resolved: direct where the penalty
       /// sits in D = diag(A) (its contrast defeats the AMG on X), amg cg
       /// where X is a plain pressure Laplacian.
@@ -430,8 +451,10 @@ namespace softsand
       smooth_solid_pressure() const
       {
         // Not rigid_nodes(): the sparsity is built before grains attach.
-        return fluid_parameters.solid_model ==
-                 FluidParameters::SolidModel::rigid_nodes &&
+        return (fluid_parameters.solid_model ==
+                  FluidParameters::SolidModel::rigid_nodes ||
+                fluid_parameters.solid_model ==
+                  FluidParameters::SolidModel::penalization_limit) &&
                fluid_parameters.rigid_node_pressure_smoothing > 0 &&
                (!use_matrix_free(Assembly::steady_stokes) ||
                 solver_parameters.schur ==
@@ -618,6 +641,11 @@ namespace softsand
       /// constrained to, and the reactions (grain, node, force) of the
       /// last solve.
       std::unordered_map<types::global_dof_index, int> rigid_dof_grain;
+      /// Penalization limit: the nodes whose target blends several grains,
+      /// and each grain's share of the node's reaction.
+      std::unordered_map<types::global_dof_index,
+                         std::vector<std::pair<int, double>>>
+        rigid_dof_shares;
       std::map<types::global_dof_index,
                std::vector<std::pair<types::global_dof_index, double>>>
         hanging_rigid_parents;
