@@ -4,7 +4,8 @@
 // cylindrical domain that is not one or conditions on faces it lacks; and
 // for granular scenes also a time step above the Rayleigh limit, servo walls
 // without a target, malformed walls or size distributions and a wall
-// cohesion that is negative or not a number; for coupled
+// cohesion that is negative or not a number, grains starting inside a
+// wall; for coupled
 // scenes a restart without checkpoint, a zero re-adaptation distance and
 // DEM sub-steps longer than the stable DEM step.
 
@@ -109,6 +110,18 @@ main(int argc, char **argv)
                  " set file = overlapping_pack.txt\nend\n");
   check_granular("grain outside the domain",
                  grains + " set list = 5e-4, 5e-4, 2e-3, 1e-4\nend\n");
+  // Grains starting inside a wall (issue 55): through a plate, and in an
+  // inlet's cylinder wall that keeps grains out.
+  check_granular("grain through a plate",
+                 grains + " set list = 5e-4, 5e-4, 5e-4, 1e-4; "
+                 "5e-4, 5e-4, 3e-5, 1e-4\nend\n"
+                 "subsection dem\n subsection walls\n  set box = z-, z+\n"
+                 " end\nend\n");
+  check_granular("grain inside an inlet's wall",
+                 grains + " set list = 5e-4, 5e-4, 5e-4, 1e-4\nend\n"
+                 "subsection dem\n subsection walls\n"
+                 "  set list = cylinder 5e-4 5e-4 0 0 0 1 2e-4 outside\n"
+                 " end\nend\n");
   check_granular("time step above the limit",
                  grains + " set list = 5e-4, 5e-4, 5e-4, 5e-5\nend\n"
                  "subsection dem\n set time step = 1e-5\nend\n");

@@ -71,9 +71,11 @@ namespace softsand
                         "0.3",
                         Patterns::Double(0),
                         "Largest overlap delta / R* accepted between two "
-                        "grains of a file or list: settled DEM packs touch "
-                        "with overlaps of a few % of R* (soft grains under "
-                        "load up to about 25%).");
+                        "grains of a file or list, and between a grain and "
+                        "a wall at the start of a DEM or coupled scene "
+                        "(there R* = R): settled DEM packs touch with "
+                        "overlaps of a few % of R* (soft grains under load "
+                        "up to about 25%).");
       prm.declare_entry("seed",
                         "1",
                         Patterns::Integer(0),

@@ -295,6 +295,77 @@ namespace softsand
 
     namespace
     {
+      std::string
+      str(const double x)
+      {
+        std::ostringstream s;
+        s << x;
+        return s.str();
+      }
+
+      /// A point or direction as (x, y, z).
+      std::string
+      str(const Tensor<1, 3> &v)
+      {
+        std::ostringstream s;
+        s << '(' << v[0] << ", " << v[1] << ", " << v[2] << ')';
+        return s.str();
+      }
+
+      /// Where the user set the wall (box faces, octagon or list, by the
+      /// names create_walls() gives) and its shape, for error messages.
+      std::string
+      describe(const Wall &wall)
+      {
+        std::string where = "dem/walls/list";
+        if (wall.name.rfind("piston_", 0) == 0)
+          where = "dem/walls/octagon";
+        else if (wall.name.size() == 9 &&
+                 (wall.name.substr(6) == "min" || wall.name.substr(6) == "max"))
+          where = "dem/walls/box";
+        if (wall.shape == Wall::Shape::plane)
+          return "'" + wall.name + "' (" + where + ", the plane through " +
+                 str(wall.point) + " with normal " + str(wall.normal) +
+                 " towards the grains)";
+        return "'" + wall.name + "' (" + where + ", the cylinder of radius " +
+               str(wall.radius) + " m around the axis through " +
+               str(wall.point) + " along " + str(wall.normal) + ", grains " +
+               (wall.outside ? "outside" : "inside") + " it)";
+      }
+    } // namespace
+
+
+    void
+    check_wall_overlaps(const std::vector<Grain<3>> &grains,
+                        const std::vector<Wall>     &walls,
+                        const double                 max_overlap_ratio)
+    {
+      for (unsigned int i = 0; i < grains.size(); ++i)
+        for (const Wall &wall : walls)
+          {
+            Tensor<1, 3> n;
+            const double ratio =
+              wall.overlap(grains[i].center, grains[i].radius, n) /
+              grains[i].radius;
+            AssertThrow(
+              !(ratio > max_overlap_ratio),
+              ExcMessage(
+                "Grain " + std::to_string(i + 1) + " (counting from 1) at " +
+                str(grains[i].center) + ", radius " + str(grains[i].radius) +
+                " m, starts inside wall " + describe(wall) +
+                ": it overlaps the wall by " + str(ratio) +
+                " R, more than grains/max overlap ratio = " +
+                str(max_overlap_ratio) +
+                " allows (settled packs press a few % of R into their walls; "
+                "more is a misplaced grain or wall, which the contact law "
+                "would eject with a meaningless force). Move the grain or the wall, or leave the grain "
+                "out."));
+          }
+    }
+
+
+    namespace
+    {
       /// Sutherland-Hodgman: the part of the convex polygon @p polygon where
       /// (x - point) * normal >= 0.
       std::vector<Point<3>>

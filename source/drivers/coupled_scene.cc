@@ -123,6 +123,9 @@ namespace softsand
         // scene's grains still fix the coarse mesh, as in the first run.
         if (!sc.restart)
           {
+            dem::check_wall_overlaps(initial,
+                                     dem->get_walls(),
+                                     p.grains.max_overlap_ratio);
             dem->insert(initial, true);
             dem->initialize();
           }

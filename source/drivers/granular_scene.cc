@@ -140,6 +140,9 @@ namespace softsand
         read_checkpoint();
       else
         {
+          dem::check_wall_overlaps(grains,
+                                     dem->get_walls(),
+                                     p.grains.max_overlap_ratio);
           dem->insert(grains, true);
           dem->initialize();
         }

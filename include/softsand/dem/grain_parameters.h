@@ -42,7 +42,8 @@ namespace softsand
       double      solid_fraction = 0.3;
       /// Random pack: number of grains (0: by solid fraction).
       unsigned int count = 0;
-      /// Largest overlap / R* accepted in a file or list.
+      /// Largest overlap / R* accepted in a file or list, and of a grain
+      /// with a wall at the start (R* = R).
       double       max_overlap_ratio = 0.3;
       std::vector<double> discrete_diameters, discrete_fractions;
       unsigned int seed          = 1;

@@ -6,6 +6,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <softsand/dem/grain.h>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -129,6 +131,20 @@ namespace softsand
     /// Build the walls of a scene in the box @p domain.
     std::vector<Wall>
     create_walls(const WallParameters &parameters, const BoundingBox<3> &domain);
+
+    /**
+     * Refuse a pack whose grains start inside a wall: a grain overlapping
+     * a wall by more than @p max_overlap_ratio of its radius (a grain in an
+     * inlet's cylinder wall, through a plate), the tolerance of the
+     * grains' own overlaps (R* = R against a wall). Far more than a
+     * settled pack's overlap is a misplaced grain or wall, which the
+     * contact law would eject with a meaningless force. The error names
+     * the grain (counting from 1), its centre, the wall and the overlap / R.
+     */
+    void
+    check_wall_overlaps(const std::vector<Grain<3>> &grains,
+                        const std::vector<Wall>     &walls,
+                        const double                 max_overlap_ratio);
 
     /**
      * The face of plane wall @p k as drawn for output: the convex polygon
