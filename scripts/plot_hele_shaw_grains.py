@@ -10,13 +10,16 @@ start (mm, logarithmic scale) or by its speed (m/s).
 
 --end omitted: the pack itself (coloured by its speed). The grain files
 are softsand's text packs (x y z radius vx vy vz wx wy wz, SI); the
-sweep (scripts/hele_shaw_sweep.py) saves each run's last grains as
-<workdir>/p<p_i>/pack_end.txt in the pack file's order, so grain i of the
+Hele-Shaw scenes (and so the sweep, scripts/hele_shaw_sweep.py) save each
+run's last grains as pack_end.txt in its output directory (dem/save pack),
+in the pack file's order, so grain i of the
 two files is the same grain. Grains are drawn from the bottom plate up
 (the top view shows the upper grains). The white disc is the inlet
 (--inlet-radius). Needs matplotlib (/usr/bin/python3 on this machine).
 """
 import argparse
+import os
+import sys
 
 import matplotlib
 matplotlib.use('Agg')
@@ -41,6 +44,15 @@ def main():
     a.add_argument('--out', required=True)
     args = a.parse_args()
 
+    for name, path in (('--start', args.start), ('--end', args.end)):
+        if path is not None and not os.path.isfile(path):
+            hint = ('' if name == '--start' else
+                    ': the Hele-Shaw scenes write it at the end of a run '
+                    '(dem/save pack = pack_end.txt in the output directory); '
+                    'a run that failed, or one of an older scene, has none. '
+                    'Omit --end to draw the pack alone')
+            sys.exit(f'plot_hele_shaw_grains.py: {name} {path}: no such '
+                     f'file{hint}.')
     start = np.loadtxt(args.start)
     grains = np.loadtxt(args.end) if args.end else start
     assert grains.shape == start.shape, 'the two files differ in grains'

@@ -1,13 +1,13 @@
 // Bad input stops with a message that names the entry, the value and what
-// is allowed: unknown entries, wrong types, out-of-range values, missing
-// files, overlapping grains, grains outside the domain, radius <= 0, a
-// cylindrical domain that is not one or conditions on faces it lacks; and
-// for granular scenes also a time step above the Rayleigh limit, servo walls
-// without a target, malformed walls or size distributions and a wall
-// cohesion that is negative or not a number, grains starting inside a
-// wall; for coupled
-// scenes a restart without checkpoint, a zero re-adaptation distance and
-// DEM sub-steps longer than the stable DEM step.
+// is allowed: unknown entries, imposed fluxes that do not balance, wrong
+// types, out-of-range values, missing files, overlapping grains, grains
+// outside the domain, radius <= 0, a cylindrical domain that is not one or
+// conditions on faces it lacks; and for granular scenes also a time step
+// above the Rayleigh limit, servo walls without a target, malformed walls
+// or size distributions, a wall cohesion that is negative or not a number
+// and grains starting inside a wall; for coupled scenes a restart without
+// checkpoint, a zero re-adaptation distance and DEM sub-steps longer than
+// the stable DEM step.
 
 #include <deal.II/base/mpi.h>
 
@@ -90,6 +90,20 @@ main(int argc, char **argv)
   check("bad body force", "subsection fluid\n set body force = 1; x +\nend\n");
   check("negative grad-div",
         "subsection fluid solver\n set grad div = -0.05\nend\n");
+  // Imposed fluxes that do not balance, no pressure face (issue 55):
+  // outflow 3x inflow, and a Poiseuille inflow against a uniform outflow
+  // of the same peak velocity.
+  check("unbalanced flow rates",
+        "subsection boundary conditions\n"
+        " subsection x min\n  set type = flow rate\n  set flow rate = 1e-9\n"
+        " end\n subsection x max\n  set type = flow rate\n"
+        "  set flow rate = -3e-9\n end\nend\n");
+  check("unbalanced function inflow",
+        "subsection boundary conditions\n"
+        " subsection x min\n  set type = function\n"
+        "  set function = 1e-3 * 16 * y * (1e-3 - y) * z * (1e-3 - z) / 1e-12; 0; 0\n"
+        " end\n subsection x max\n  set type = velocity\n"
+        "  set velocity = 1e-3, 0, 0\n end\nend\n");
   check("cylinder with a rectangular cross-section",
         "subsection mesh\n set geometry = cylinder\n"
         " set upper corner = 1e-3, 2e-3, 1e-3\nend\n");

@@ -3,7 +3,8 @@
 // them. The file must be refused before p4est sees it, with a message
 // naming mesh/mesh file, the file, the cells found and what is allowed; a
 // mesh that mixes hexahedra and prisms likewise. A hexahedral mesh of the
-// same box is still read (its run gives its cells).
+// same box is still read (its run gives its cells); without physical
+// groups on its faces (every boundary id 0, issue 55) it is refused.
 
 #include <deal.II/base/mpi.h>
 
@@ -50,7 +51,8 @@ namespace
   }
 
   /// A gmsh 2.2 file with @p nodes ("x y z" each) and @p elements
-  /// ("TYPE node node ..." each, 1-based nodes).
+  /// ("TYPE node node ..." each, 1-based nodes; "TYPE@TAG ..." gives the
+  /// physical tag, 0 otherwise).
   void
   write_msh(const std::string              &name,
             const std::vector<std::string> &nodes,
@@ -68,8 +70,15 @@ namespace
         std::string        type, rest;
         words >> type;
         std::getline(words, rest);
+        std::string physical = "0";
+        if (const auto at = type.find('@'); at != std::string::npos)
+          {
+            physical = type.substr(at + 1);
+            type     = type.substr(0, at);
+          }
         // Two tags: physical and elementary entity.
-        out << k + 1 << ' ' << type << " 2 0 1" << rest << '\n';
+        out << k + 1 << ' ' << type << " 2 " << physical << " 1" << rest
+            << '\n';
       }
     out << "$EndElements\n";
   }
@@ -85,7 +94,17 @@ main(int argc, char **argv)
   // (type 4), and as a hexahedron beside two prisms (type 6).
   const std::vector<std::string> cube = {
     "0 0 0", "1 0 0", "1 1 0", "0 1 0", "0 0 1", "1 0 1", "1 1 1", "0 1 1"};
-  write_msh("hexahedron.msh", cube, {"5 1 2 3 4 5 6 7 8"});
+  // Its faces in physical groups 0..5 (x min, x max, ...), or in none.
+  write_msh("hexahedron.msh",
+            cube,
+            {"5 1 2 3 4 5 6 7 8",
+             "3@0 1 4 8 5",
+             "3@1 2 3 7 6",
+             "3@2 1 2 6 5",
+             "3@3 4 3 7 8",
+             "3@4 1 2 3 4",
+             "3@5 5 6 7 8"});
+  write_msh("untagged.msh", cube, {"5 1 2 3 4 5 6 7 8"});
   write_msh("tetrahedra.msh",
             cube,
             {"4 1 2 4 5", "4 2 3 4 7", "4 2 5 6 7", "4 4 5 7 8", "4 2 4 5 7"});
@@ -105,6 +124,7 @@ main(int argc, char **argv)
             {"5 1 2 3 4 5 6 7 8", "6 5 6 7 9 10 11", "6 5 7 8 9 11 12"});
 
   run("hexahedron", "hexahedron.msh");
+  run("hexahedron without physical groups", "untagged.msh");
   run("tetrahedra", "tetrahedra.msh");
   run("hexahedron and prisms", "mixed.msh");
 }

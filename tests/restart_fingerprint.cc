@@ -5,12 +5,16 @@
 // from another scene's stops with a message naming each entry that
 // differs with its old and new value; the scene's own restarts; a
 // checkpoint of an earlier version (no fingerprint) restarts after a
-// warning. A transient fluid scene (8 coarse cells, no grains).
+// warning. A transient fluid scene (8 coarse cells, no grains). A
+// checkpoint file cut short and a restart with another pack under the
+// same file name (a grain) stop with a message naming the file, the sizes
+// or the pack's hash.
 
 #include <deal.II/base/mpi.h>
 
 #include <softsand/base/parameter_tools.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -114,4 +118,52 @@ main(int argc, char **argv)
   // The new checkpoint has one again.
   run("restart with other coarse cells",
       scene(5, true, "subsection mesh\n set coarse cells = 1, 1, 1\nend\n"));
+
+  // A checkpoint file cut short (issue 55): checkpoint.info records the
+  // size of each file, a restart compares them.
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    {
+      std::string largest;
+      for (const auto &entry : std::filesystem::directory_iterator("results"))
+        if (entry.path().filename().string().rfind("checkpoint-4.", 0) == 0 &&
+            (largest.empty() ||
+             entry.file_size() > std::filesystem::file_size(largest)))
+          largest = entry.path().string();
+      std::filesystem::resize_file(largest, 100);
+    }
+  MPI_Barrier(MPI_COMM_WORLD);
+  try
+    {
+      run_scene<3>(scene(5, true));
+      deallog << "restart from a truncated checkpoint file: ran (wrong)"
+              << std::endl;
+    }
+  catch (const std::exception &e)
+    {
+      // The recorded size depends on the number of ranks: keep the rest.
+      std::string message = softsand::base::error_message(e);
+      const auto  recorded = message.find("recorded ");
+      if (recorded != std::string::npos)
+        message.replace(recorded + 9,
+                        message.find(' ', recorded + 9) - recorded - 9,
+                        "N");
+      deallog << "restart from a truncated checkpoint file: " << message
+              << std::endl;
+    }
+
+  // Another pack file under the same name (issue 55): the checkpoint
+  // keeps a hash of the pack's content.
+  const std::string with_pack =
+    "subsection grains\n set source = file\n set file = pack.txt\nend\n"
+    "subsection mesh\n set allow unresolved grains = true\nend\n"
+    "subsection output\n set directory = results_pack\nend\n";
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::ofstream("pack.txt") << "5e-4 5e-4 5e-4 1e-4\n";
+  MPI_Barrier(MPI_COMM_WORLD);
+  run("fresh run with a pack file, 2 steps", scene(2, false, with_pack));
+  run("restart with the same pack file", scene(3, true, with_pack));
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+    std::ofstream("pack.txt") << "5e-4 5e-4 5e-4 1.2e-4\n";
+  MPI_Barrier(MPI_COMM_WORLD);
+  run("restart with another pack in the file", scene(4, true, with_pack));
 }

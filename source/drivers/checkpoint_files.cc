@@ -25,6 +25,10 @@ namespace softsand
     {
       const std::string fingerprint_tag = "scene ";
       const std::string hash_entry      = "fixed entries hash";
+      const std::string pack_hash_entry = "grains/file content hash";
+      /// Lines "checkpoint file NAME = BYTES" of checkpoint.info: the size
+      /// of each file of the checkpoint when it was committed.
+      const std::string file_size_tag = "checkpoint file ";
 
       /// @p value with every number written alike (15 digits), so that
       /// "1e-3" and "0.001" are the same value.
@@ -128,6 +132,20 @@ namespace softsand
           }
       }
 
+      /// A hash of the pack file's content: the grains a restart reads
+      /// come from the checkpoint, so another pack under the same name
+      /// would go unnoticed.
+      std::string
+      file_content_hash(const std::string &name)
+      {
+        std::ifstream in(name, std::ios::binary);
+        if (!in)
+          return "unknown (the pack file is unreadable)";
+        std::ostringstream content;
+        content << in.rdbuf();
+        return fnv1a(content.str());
+      }
+
       /// "path = value" lines as a map.
       std::map<std::string, std::string>
       entry_map(std::istream &in)
@@ -182,6 +200,45 @@ namespace softsand
                       " in the checkpoint, " + shortened(value) + " now";
           }
         return text;
+      }
+    } // namespace
+
+
+    namespace
+    {
+      /// Stop the run if a file of the checkpoint is missing or its size is
+      /// not the one checkpoint.info recorded (@p sizes: name, bytes;
+      /// checkpoints of earlier versions recorded none).
+      void
+      check_checkpoint_file_sizes(
+        const std::string                        &directory,
+        const std::map<std::string, std::string> &sizes)
+      {
+        namespace fs = std::filesystem;
+        for (const auto &[name, size] : sizes)
+          {
+            const std::string path = directory + "/" + name;
+            std::error_code   error;
+            const auto        actual = fs::file_size(path, error);
+            AssertThrow(!error,
+                        ExcMessage("The checkpoint file <" + path +
+                                   "> that " + directory +
+                                   "/checkpoint.info names is missing: the "
+                                   "checkpoint is incomplete. Restart from a "
+                                   "complete copy of the output directory, "
+                                   "or start anew (simulation control/"
+                                   "restart = false)."));
+            AssertThrow(std::to_string(actual) == size,
+                        ExcMessage("The checkpoint file <" + path + "> has " +
+                                   std::to_string(actual) + " bytes, but " +
+                                   directory +
+                                   "/checkpoint.info recorded " + size +
+                                   " bytes when it was written: the file was "
+                                   "cut short (a copy, a full disk) or "
+                                   "changed. Restart from a complete copy of "
+                                   "the output directory, or start anew "
+                                   "(simulation control/restart = false)."));
+          }
       }
     } // namespace
 
@@ -242,8 +299,13 @@ namespace softsand
               {"mesh/mesh file", entry("mesh/mesh file")},
               {"grains/source", entry("grains/source")},
               {"grains/file", entry("grains/file")},
-              {"grain count", grain_count(p.grains)},
-              {hash_entry, fnv1a(fingerprint.fixed_entries)}};
+              {"grain count", grain_count(p.grains)}};
+      if (p.grains.source == dem::GrainParameters<dim>::Source::file)
+        fingerprint.entries.emplace_back(pack_hash_entry,
+                                         file_content_hash(p.grains.file));
+      // Last: read_checkpoint_info() names the hash as the last entry.
+      fingerprint.entries.emplace_back(hash_entry,
+                                       fnv1a(fingerprint.fixed_entries));
       return fingerprint;
     }
 
@@ -277,6 +339,18 @@ namespace softsand
             out << info;
             for (const auto &[entry, value] : fingerprint.entries)
               out << fingerprint_tag << entry << " = " << value << '\n';
+            // Every rank's files are on disk (the barrier): their sizes let
+            // a restart find a file cut short by a copy or a full disk.
+            const std::string prefix = "checkpoint-" + std::to_string(step) + ".";
+            std::map<std::string, std::uintmax_t> sizes;
+            for (const auto &entry : fs::directory_iterator(directory))
+              {
+                const std::string name = entry.path().filename().string();
+                if (name.rfind(prefix, 0) == 0 && entry.is_regular_file())
+                  sizes[name] = entry.file_size();
+              }
+            for (const auto &[name, size] : sizes)
+              out << file_size_tag << name << " = " << size << '\n';
             out << "mode " << mode << '\n';
           }
           fs::rename(directory + "/checkpoint.info.tmp",
@@ -317,8 +391,17 @@ namespace softsand
       // The scene's fingerprint apart; the rest is the scene's own.
       std::string                        text;
       std::map<std::string, std::string> written;
+      std::map<std::string, std::string> file_sizes;
       for (std::string line; std::getline(in, line);)
-        if (line.rfind(fingerprint_tag, 0) == 0)
+        if (line.rfind(file_size_tag, 0) == 0)
+          {
+            const auto equals = line.find(" = ");
+            if (equals != std::string::npos)
+              file_sizes[line.substr(file_size_tag.size(),
+                                     equals - file_size_tag.size())] =
+                line.substr(equals + 3);
+          }
+        else if (line.rfind(fingerprint_tag, 0) == 0)
           {
             const auto equals = line.find(" = ");
             if (equals != std::string::npos)
@@ -361,7 +444,9 @@ namespace softsand
               const auto        it = written.find(entry);
               const std::string old_value =
                 it == written.end() ? "(not recorded)" : it->second;
-              if (old_value == value)
+              // Checkpoints of earlier versions did not hash the pack.
+              if (old_value == value ||
+                  (entry == pack_hash_entry && it == written.end()))
                 continue;
               if (entry == hash_entry)
                 hash_differs = true;
@@ -400,6 +485,7 @@ namespace softsand
                           "wrote it, or start anew (restart = false) in "
                           "another output directory."));
         }
+      check_checkpoint_file_sizes(directory, file_sizes);
       return std::istringstream(text);
     }
 

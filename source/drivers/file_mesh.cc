@@ -85,6 +85,25 @@ namespace softsand
                 " only (in gmsh: recombine the mesh; in 3D also "
                 "Mesh.SubdivisionAlgorithm = 2)");
           }
+        // gmsh gives boundary faces without a physical group the tag 0:
+        // the whole boundary would take the conditions of 'x min', and
+        // the run would end with misleading warnings (sealed pores).
+        bool any_other_tag = false;
+        for (const auto &face : serial.active_face_iterators())
+          if (face->at_boundary() && face->boundary_id() != 0)
+            any_other_tag = true;
+        if (!any_other_tag)
+          base::throw_invalid_parameter(
+            "mesh/mesh file",
+            mesh.mesh_file,
+            "every boundary face has the boundary id 0, what gmsh writes for "
+            "faces in no physical group (the file has none on its "
+            "boundary): all of the boundary would take the conditions of "
+            "'boundary conditions/x min'. Tag the boundary with physical "
+            "groups (Physical Surface in 3D, Physical Curve in 2D): 0..." +
+              std::to_string(2 * dim - 1) +
+              " for the faces given conditions as 'x min', 'x max', ..., "
+              "any other number for no-slip walls");
       }
       read(triangulation);
 

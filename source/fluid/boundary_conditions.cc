@@ -2,13 +2,16 @@
 #include <softsand/fluid/boundary_conditions.h>
 
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/quadrature_lib.h>
 
 #include <deal.II/fe/component_mask.h>
 #include <deal.II/fe/fe_values_extractors.h>
 
 #include <deal.II/numerics/vector_tools.h>
 
+#include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace softsand
 {
@@ -178,6 +181,89 @@ namespace softsand
           "the inlet must be narrower than the perimeter region's cylinder "
           "(radius " + std::to_string(perimeter.radius) + " m)");
       prm.leave_subsection();
+      check_flux_balance();
+    }
+
+
+    template <int dim>
+    void
+    BoundaryConditions<dim>::check_flux_balance() const
+    {
+      if (has_pressure_face() || from_file)
+        return;
+      // Flux into the domain through each face; the inward normal of face
+      // b is +e_axis on a min face, -e_axis on a max face.
+      std::vector<double> inflow(n_faces, 0.);
+      double              total = 0;
+      for (unsigned int b = 0; b < n_faces; ++b)
+        {
+          const Face        &f    = faces[b];
+          const unsigned int axis = b / 2;
+          const double       sign = (b % 2 == 0) ? 1. : -1.;
+          if (f.type == Type::velocity || f.type == Type::flow_rate)
+            inflow[b] = sign * f.velocity[axis] * face_area(b);
+          else if (f.type == Type::function)
+            {
+              // A cylinder's circular ends would need their own rule.
+              if (cylinder_axis != numbers::invalid_unsigned_int)
+                return;
+              FunctionParser<dim> u(dim);
+              u.initialize(dim == 2 ? "x,y,t" : "x,y,z,t",
+                           f.function,
+                           base::function_constants(),
+                           true);
+              // Gauss points on the face rectangle: exact for polynomial
+              // profiles (Poiseuille) of degree up to 19.
+              const QGauss<dim - 1> rule(10);
+              const auto [lo, hi] = domain.get_boundary_points();
+              for (unsigned int q = 0; q < rule.size(); ++q)
+                {
+                  Point<dim> x;
+                  double     weight = rule.weight(q);
+                  for (unsigned int d = 0, e = 0; d < dim; ++d)
+                    if (d == axis)
+                      x[d] = (b % 2 == 0) ? lo[d] : hi[d];
+                    else
+                      {
+                        x[d] = lo[d] + rule.point(q)[e++] * (hi[d] - lo[d]);
+                        weight *= hi[d] - lo[d];
+                      }
+                  inflow[b] += sign * u.value(x, axis) * weight;
+                }
+            }
+          total += std::abs(inflow[b]);
+        }
+      double net = 0;
+      for (const double q : inflow)
+        net += q;
+      if (!(std::abs(net) > 1e-6 * total))
+        return;
+      const std::string  unit = dim == 3 ? " m^3/s" : " m^2/s";
+      std::ostringstream in, out;
+      double             sum_in = 0, sum_out = 0;
+      for (unsigned int b = 0; b < n_faces; ++b)
+        if (inflow[b] > 0)
+          {
+            in << (sum_in > 0 ? ", " : "") << inflow[b] << unit << " through '"
+               << face_name(b) << "'";
+            sum_in += inflow[b];
+          }
+        else if (inflow[b] < 0)
+          {
+            out << (sum_out > 0 ? ", " : "") << -inflow[b] << unit
+                << " through '" << face_name(b) << "'";
+            sum_out -= inflow[b];
+          }
+      std::ostringstream message;
+      message << "boundary conditions: every face imposes the velocity (no "
+                 "pressure face or region), but the imposed fluxes do not "
+                 "balance: in "
+              << sum_in << unit << " (" << (sum_in > 0 ? in.str() : "none")
+              << "), out " << sum_out << unit << " ("
+              << (sum_out > 0 ? out.str() : "none")
+              << "). Incompressible flow carries out what comes in: make the "
+                 "fluxes equal, or make one face an outlet (type = pressure).";
+      AssertThrow(false, ExcMessage(message.str()));
     }
 
 

@@ -38,7 +38,8 @@ namespace softsand
     /// The fingerprint of the scene of @p parameters: the mode, the
     /// dimension, the mesh entries that make the coarse mesh and its
     /// refinement (geometry, corners, coarse cells, cells per diameter, mesh
-    /// file), the grain source, pack file and count, and a hash of every
+    /// file), the grain source, pack file, a hash of its content and the
+    /// grain count, and a hash of every
     /// entry fixed over a restart (fixed_entries()). A restart whose
     /// fingerprint differs would read a mesh, fields or grains that are not
     /// its scene's: deal.II's SolutionTransfer then crashes rather than
@@ -60,8 +61,9 @@ namespace softsand
     checkpoint_base(const std::string &directory, const unsigned long step);
 
     /// Make the checkpoint of @p step current once every rank has written
-    /// its files: @p info (rank 0's) and the scene's @p fingerprint become
-    /// checkpoint.info. Collective.
+    /// its files: @p info (rank 0's), the scene's @p fingerprint and the
+    /// size of each file of the checkpoint become checkpoint.info.
+    /// Collective.
     void
     commit_checkpoint(const std::string      &directory,
                       const unsigned long     step,
@@ -74,8 +76,10 @@ namespace softsand
     /// @p mode wrote, without its fingerprint: a missing file, another mode
     /// or another scene (a fingerprint that differs from @p fingerprint)
     /// stops the run with a message naming simulation control/restart and
-    /// what differs. A checkpoint of an earlier version without a
-    /// fingerprint is read after a warning.
+    /// what differs; so does a file of the checkpoint that is missing or
+    /// whose size differs from the one recorded when it was written (cut
+    /// short). A checkpoint of an earlier version without a fingerprint is
+    /// read after a warning.
     std::istringstream
     read_checkpoint_info(const std::string      &directory,
                          const std::string      &mode,

@@ -143,6 +143,18 @@ namespace softsand
       Tensor<1, dim>
       inflow_velocity() const;
 
+      /**
+       * Refuse imposed velocities whose fluxes do not add up to zero when no
+       * face or region fixes the pressure: incompressible flow cannot carry
+       * more out than in, and the solver would return a field that
+       * satisfies neither (an outflow 3x the inflow gave a drag 3x off,
+       * silently). Function faces are integrated at t = 0; a mesh file's
+       * faces, whose areas are not known here, are not checked. Called by
+       * parse_parameters().
+       */
+      void
+      check_flux_balance() const;
+
       /// Area of face @p boundary_id of the box (of the circle for a
       /// cylinder's end); not defined for a mesh file's domain (NaN).
       double
