@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Dense-pack fluid solver benchmark (doc/solver_study.md).
+"""Dense-pack fluid solver benchmark (doc/notes/solver_study.md).
 
 For each problem and each candidate solver setting it runs build/softsand
 once per rank count and prints: DoFs, FGMRES iterations, preconditioner

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The transient step's cost, old and new solver back to back
-(doc/solver_study.md, "The transient matrix-free step").
+(doc/notes/solver_study.md, "The transient matrix-free step").
 
 Runs a transient scene (default: the Hele-Shaw injection) with each value of
 'fluid solver/transient solver' in turn, --repeat times, alternating, for

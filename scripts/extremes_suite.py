@@ -272,7 +272,7 @@ def parse_results(stdout):
             inside = True
             continue
         if inside:
-            m = re.match(r'^\s+(\S+)\s+(\S+)\s*$', line)
+            m = re.match(r'^\s+(\S+)\s+(\S+)(\s+\S+)?\s*$', line)
             if not m:
                 if results:
                     inside = False

@@ -50,7 +50,11 @@ the wall time is summed over the sessions (a killed session up to its
 last statistics row). Ctrl-C or SIGTERM to the sweep stops it cleanly:
 each running injection finishes its step and writes a checkpoint, no
 further pressure starts, and the table is written. The table's 'end' column says
-why each run ended: reach, stalled, time (end time or max steps).
+why each run ended: reach, stalled, time (end time or max steps); when
+the verdict rests on runs that ended by time, the table says so. Each run's
+start and end are reported on stderr as they happen, and the table is drawn
+as Fig. 9 (growth against p_i, the bracket shaded) in <workdir>/fig9.png
+(--no-plot: not drawn; needs matplotlib).
 """
 import argparse
 import concurrent.futures
@@ -200,12 +204,17 @@ def run_one(args, text, p):
     with open(running_file, 'w') as f:
         f.write('%s\n' % time.ctime())
     start = time.time()
+    print('sweep: %g Pa %s (%s.log)' % (p, 'resumed' if restart else 'started',
+                                       os.path.join(args.workdir, name)),
+          file=sys.stderr, flush=True)
     with open(os.path.join(args.workdir, name + '.log'), 'a') as log:
         log.write('# %s%s\n' % (' '.join(cmd),
                                  ' (restart)' if restart else ''))
         log.flush()
+        # Its own session: Ctrl-C on the sweep must not reach mpirun, which
+        # would kill the ranks at once; the sweep passes on SIGUSR1.
         proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.PIPE,
-                                text=True)
+                                text=True, start_new_session=True)
         STOP.children.add(proc)
         stderr = proc.communicate()[1]
         STOP.children.discard(proc)
@@ -224,7 +233,14 @@ def run_one(args, text, p):
     with open(done_file, 'w') as f:
         f.write(end_reason(open(os.path.join(args.workdir,
                                              name + '.log')).read()) + '\n')
-    return summarize_one(args, p)
+    result = summarize_one(args, p)
+    if 'error' not in result:
+        print('sweep: %g Pa finished after %.0f s: %d steps to t = %.4g s, '
+              'growth %.3f mm^2, ended by %s' % (
+                  p, wall, result['steps'], result['time'],
+                  (result['area_max'] - result['area0']) * 1e6,
+                  result.get('end', '?')), file=sys.stderr, flush=True)
+    return result
 
 
 def summarize_one(args, p):
@@ -291,6 +307,9 @@ def main():
     a.add_argument('--checkpoint-interval', type=int, default=None,
                    help='coupling steps between checkpoints (default 5 with '
                         '--developed, else 0: none)')
+    a.add_argument('--no-plot', dest='plot', action='store_false',
+                   help='do not draw <workdir>/fig9.png (Fig. 9: growth '
+                        'against p_i, by scripts/plot_fracture_area.py)')
     args = a.parse_args()
     if args.checkpoint_interval is None:
         args.checkpoint_interval = 5 if args.developed else 0
@@ -376,11 +395,34 @@ def main():
     else:
         lines.append('# every pressure fractured: critical pressure below '
                      '%g Pa' % min(finished))
+    undeveloped = [r['p'] for r in results
+                   if 'error' not in r and r.get('end') in ('time', None,
+                                                             'unfinished')]
+    if finished and undeveloped:
+        lines.append('# caveat: the runs at %s Pa ended by the end time or '
+                     'step count (or are unfinished), not by a developed '
+                     'fracture: their areas are lower bounds and the verdict '
+                     'above may move (run with --developed)'
+                     % ','.join('%g' % q for q in undeveloped))
     os.makedirs(args.workdir, exist_ok=True)
     with open(os.path.join(args.workdir, 'summary.txt' if args.summarize
                            else 'sweep.txt'), 'w') as f:
         f.write('\n'.join(lines) + '\n')
     print('\n'.join(lines))
+    if args.plot and finished:
+        table = os.path.join(args.workdir, 'summary.txt' if args.summarize
+                             else 'sweep.txt')
+        figure = os.path.join(args.workdir, 'fig9.png')
+        plot = subprocess.run(
+            [sys.executable, os.path.join(os.path.dirname(
+                os.path.abspath(__file__)), 'plot_fracture_area.py'),
+             '--sweep', table, '--label', os.path.basename(args.scene),
+             '--threshold', '%g' % (args.open_area * 1e6), '--out', figure],
+            capture_output=True, text=True)
+        print('sweep: Fig. 9 in %s' % figure if plot.returncode == 0 else
+              'sweep: no figure (plot_fracture_area.py: %s)'
+              % (plot.stderr.strip().splitlines() or ['failed'])[-1],
+              file=sys.stderr)
     if STOP.requested:
         print('sweep: stopped on request; the same command resumes',
               file=sys.stderr)

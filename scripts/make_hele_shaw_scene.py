@@ -27,7 +27,7 @@ Each stage prints whether its pack settled (the DEM's own warning says so
 when it did not). Then run `build/softsand <workdir>/injection.prm`, or the
 sweep: `python3 scripts/hele_shaw_sweep.py --scene <workdir>/injection.prm`.
 Measured cost (1 rank): small scale about 10 s; the default scale's two
-stages took 229 s and 1,189 s (doc/hele_shaw_history.md, "Workflow"). Run from the repository
+stages took 229 s and 1,189 s (doc/notes/hele_shaw_history.md, "Workflow"). Run from the repository
 root.
 """
 import argparse

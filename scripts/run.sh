@@ -13,7 +13,9 @@ ranks="${SOFTSAND_RANKS:-1}"
 outdir="output/$(basename "$scene" .prm)-$(date +%Y%m%d-%H%M%S)"
 echo "softsand run: output in $outdir"
 if [ "$ranks" -gt 1 ]; then
-  mpirun -np "$ranks" build/softsand "$scene" --set "output/directory=$outdir"
+  # Ctrl-C stops after the step with a checkpoint (mpirun alone would kill).
+  bash scripts/mpirun_stoppable.sh "$ranks" build/softsand "$scene" \
+    --set "output/directory=$outdir"
 else
   build/softsand "$scene" --set "output/directory=$outdir"
 fi

@@ -123,9 +123,12 @@ main(int argc, char **argv)
   // size of each file, a restart compares them.
   if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
     {
-      std::string largest;
+      unsigned int step = 0;
+      std::ifstream("results/checkpoint.info") >> step;
+      const std::string prefix = "checkpoint-" + std::to_string(step) + ".";
+      std::string       largest;
       for (const auto &entry : std::filesystem::directory_iterator("results"))
-        if (entry.path().filename().string().rfind("checkpoint-4.", 0) == 0 &&
+        if (entry.path().filename().string().rfind(prefix, 0) == 0 &&
             (largest.empty() ||
              entry.file_size() > std::filesystem::file_size(largest)))
           largest = entry.path().string();

@@ -1,6 +1,7 @@
 #include <softsand/base/stop_request.h>
 
 #include <csignal>
+#include <ctime>
 
 namespace softsand
 {
@@ -8,23 +9,37 @@ namespace softsand
   {
     namespace
     {
-      // pending: not yet taken by stop_requested(); received: ever.
-      volatile std::sig_atomic_t pending  = 0;
-      volatile std::sig_atomic_t received = 0;
-      bool                       stopped  = false;
+      // pending: not yet taken by stop_requested(); first: when the first
+      // request came (steady clock, s; 0: none yet).
+      volatile std::sig_atomic_t pending = 0;
+      double                     first   = 0;
+      bool                       stopped = false;
+
+      double
+      now()
+      {
+        timespec t; // clock_gettime is async-signal-safe
+        clock_gettime(CLOCK_MONOTONIC, &t);
+        return t.tv_sec + 1e-9 * t.tv_nsec;
+      }
 
       extern "C" void
       handle_stop_signal(int signal)
       {
-        // A second interrupt means "now": the default action ends the run.
-        if (received != 0 && signal != SIGUSR1)
+        // An interrupt a second or more after the first means "now": the
+        // default action ends the run. One within a second does not:
+        // Ctrl-C on mpirun reaches every rank twice, from the terminal and
+        // from mpirun, and mpirun adds SIGTERM.
+        const double t = now();
+        if (first > 0 && t > first + 1 && signal != SIGUSR1)
           {
             std::signal(signal, SIG_DFL);
             std::raise(signal);
             return;
           }
-        received = 1;
-        pending  = 1;
+        if (first == 0)
+          first = t;
+        pending = 1;
       }
     } // namespace
 

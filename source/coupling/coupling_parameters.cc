@@ -42,7 +42,7 @@ namespace softsand
         "back where it stays within this, never in two steps running "
         "(variable-step BDF2; dimensionless; 0: fixed steps). The "
         "velocity V-cycle of the Oseen step fails at Courant numbers of a "
-        "few (doc/solver_study.md). With fluid/solid model = penalization "
+        "few (doc/notes/solver_study.md). With fluid/solid model = penalization "
         "the step is also the penalty's time scale: leave it 0 there.");
       prm.declare_entry("dem substeps",
                         "0",

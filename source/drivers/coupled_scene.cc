@@ -323,7 +323,7 @@ namespace softsand
            << time << " s (simulation control/time step = "
            << parameters.simulation_control.time_step
            << " s): the Oseen solve's iterations grow above about 1.5 and "
-              "it failed at 2.5 (doc/solver_study.md). Set coupling/max "
+              "it failed at 2.5 (doc/notes/solver_study.md). Set coupling/max "
               "courant number (e.g. 1.5) to halve the step where the flow "
               "is fast.";
       base::warn_once("coupling courant number", text.str(), mpi_communicator);
@@ -351,6 +351,8 @@ namespace softsand
         write_checkpoint();
       std::ostringstream where;
       where << "step " << step << ", t = " << time << " s";
+      end_reason = "stopped on request (checkpoint written; restart = true "
+                   "continues)";
       base::report_stop(console.pcout, where.str(),
                         parameters.output.directory);
       return true;
@@ -363,6 +365,8 @@ namespace softsand
       if (!fracture_development)
         return;
       developed_fracture = fracture_development->check(fluid.grains(), time);
+      if (!developed_fracture.empty())
+        end_reason = "the fracture developed (" + developed_fracture + ")";
       if (!developed_fracture.empty())
         console.pcout << "Developed fracture at step " << step << ", t = "
                       << time << " s: " << developed_fracture
@@ -514,6 +518,15 @@ namespace softsand
             last_results["grain0_" + axis]  = fluid.grains()[0].center[d];
           }
       print_fluid_results(console.pcout, 3, last_results);
+      print_run_summary(console.pcout,
+                        std::to_string(step - first_step) +
+                          " coupled steps in this process (to step " +
+                          std::to_string(step) + ")",
+                        time,
+                        end_reason,
+                        last_results,
+                        p.output.directory,
+                        mpi_communicator);
       // On screen unless quiet, in log.txt always (console.progress).
       timer.print_wall_time_statistics(mpi_communicator);
     }

@@ -6,6 +6,7 @@
 #include <softsand/drivers/cylinder_mesh.h>
 #include <softsand/drivers/file_mesh.h>
 #include <softsand/drivers/scene_setup.h>
+#include <softsand/io/column_units.h>
 #include <softsand/io/grain_file.h>
 
 #include <algorithm>
@@ -420,14 +421,19 @@ namespace softsand
     print_results(ConditionalOStream                  &pcout,
                   const std::string                   &title,
                   const std::map<std::string, double> &results,
-                  const std::set<std::string>         &left_out)
+                  const std::set<std::string>         &left_out,
+                  const unsigned int                   dim)
     {
-      pcout << "Results (" << title << "):" << std::endl;
+      pcout << "Results (" << title << ", SI units):" << std::endl;
       for (const auto &[name, value] : results)
         if (left_out.count(name) == 0)
-          pcout << "  " << std::left << std::setw(24) << name << " "
-                << std::scientific << std::setprecision(5) << value
-                << std::defaultfloat << std::endl;
+          {
+            const std::string unit = io::column_unit(name, dim);
+            pcout << "  " << std::left << std::setw(27) << name << " "
+                  << std::scientific << std::setprecision(5) << value
+                  << std::defaultfloat << (unit == "-" ? "" : " " + unit)
+                  << std::endl;
+          }
     }
 
 
@@ -436,13 +442,92 @@ namespace softsand
                         const unsigned int                   dim,
                         const std::map<std::string, double> &results)
     {
-      print_results(pcout,
-                    std::to_string(dim) + "D",
-                    results,
-                    {"wall_time",
-                     "linear_iterations",
-                     "nonlinear_iterations",
-                     "total_linear_iterations"});
+      std::set<std::string> left_out = {"wall_time",
+                                        "linear_iterations",
+                                        "nonlinear_iterations",
+                                        "total_linear_iterations"};
+      if (results.count("radial_flow_rate") != 0)
+        for (const char *axial : {"flow_rate",
+                                  "outflow_rate",
+                                  "permeability",
+                                  "pressure_drop",
+                                  "superficial_velocity"})
+          left_out.insert(axial);
+      print_results(pcout, std::to_string(dim) + "D", results, left_out, dim);
+    }
+
+
+    namespace
+    {
+      /// The files of @p directory, each numbered series as one line
+      /// ("solution_####.vtu: 12 files").
+      std::string
+      output_files(const std::string &directory)
+      {
+        namespace fs = std::filesystem;
+        std::map<std::string, unsigned int> series;
+        std::error_code                     error;
+        for (const auto &entry : fs::directory_iterator(directory, error))
+          {
+            std::string name = entry.path().filename().string();
+            for (char &c : name)
+              if (c >= '0' && c <= '9')
+                c = '#';
+            ++series[name];
+          }
+        std::ostringstream out;
+        for (const auto &[pattern, count] : series)
+          {
+            out << "    " << pattern;
+            if (count > 1)
+              out << ": " << count << " files";
+            out << '\n';
+          }
+        return out.str();
+      }
+    } // namespace
+
+
+    void
+    print_run_summary(ConditionalOStream                  &pcout,
+                      const std::string                   &steps,
+                      const double                         time,
+                      const std::string                   &end_reason,
+                      const std::map<std::string, double> &results,
+                      const std::string                   &directory,
+                      const MPI_Comm                       comm)
+    {
+      if (Utilities::MPI::this_mpi_process(comm) != 0)
+        return;
+      pcout << "Summary: " << steps << ", t = " << time << " s; ended because "
+            << end_reason << "." << std::endl;
+      const auto found = [&](const std::string &name) {
+        return results.count(name) != 0;
+      };
+      const auto format = [](const double value) {
+        std::ostringstream s;
+        s << std::setprecision(4) << value;
+        return s.str();
+      };
+      if (found("fracture_area"))
+        pcout << "  fracture: area " << format(1e6 * results.at("fracture_area"))
+              << " mm^2 beyond the inlet"
+              << (found("fracture_reach") ?
+                    ", reach " +
+                      format(1e3 * results.at("fracture_reach")) +
+                      " mm from the axis" :
+                    std::string())
+              << std::endl;
+      if (found("radial_flow_rate"))
+        pcout << "  radial flow rate " << format(results.at("radial_flow_rate"))
+              << " m^3/s"
+              << (found("pore_reynolds_max") ?
+                    ", largest pore Reynolds number " +
+                      format(results.at("pore_reynolds_max")) :
+                    std::string())
+              << std::endl;
+      pcout << "  files in " << directory << ":\n"
+            << output_files(directory) << std::flush;
     }
 
 

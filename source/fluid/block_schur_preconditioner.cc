@@ -229,7 +229,7 @@ namespace softsand
           // no free velocity sees (B^T p = 0: constrained rows, pockets that
           // only the rigid-node smoothing couples) then get S^-1 = C^-1
           // exactly. Without it FGMRES stalled on the second coupled step of
-          // the small Hele-Shaw cell (doc/solver_study.md).
+          // the small Hele-Shaw cell (doc/notes/solver_study.md).
           system_matrix.block(1, 1).vmult(dst.block(1), tmp_p);
           tmp_p2 -= dst.block(1);
           discrete_brinkman_inverse.solve(dst.block(1), tmp_p2);

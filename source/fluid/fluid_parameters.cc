@@ -220,7 +220,7 @@ namespace softsand
                         "1e-4 (discrete brinkman); the commutator, which "
                         "applies it twice, stalled at 1e-4 on a "
                         "simple-cubic array and converges at 1e-6 "
-                        "(doc/solver_study.md).");
+                        "(doc/notes/solver_study.md).");
       prm.declare_entry(
         "schur inner solver",
         "auto",
@@ -238,7 +238,7 @@ namespace softsand
         "where X is a plain pressure Laplacian (rigid nodes), but on "
         "penalized packs the penalty's contrast in D makes it reach that "
         "bound. auto = direct with fluid/solid model = penalization, amg cg "
-        "otherwise (doc/solver_study.md: Fig. 3 pack at N = 8, 5x faster "
+        "otherwise (doc/notes/solver_study.md: Fig. 3 pack at N = 8, 5x faster "
         "with direct; Hele-Shaw with rigid nodes at 4.4 M DoFs, the same "
         "time and half the memory with amg cg).");
       prm.declare_entry(
@@ -275,7 +275,7 @@ namespace softsand
         "transient and Picard/Newton steps: on the small Hele-Shaw "
         "injection at 16 kPa (transient, cell Reynolds numbers near 100) "
         "it took 3-19 FGMRES iterations per step where chebyshev took "
-        "65-212 and symmetric gauss seidel 483 (doc/solver_study.md, "
+        "65-212 and symmetric gauss seidel 483 (doc/notes/solver_study.md, "
         "\"The velocity smoother of convective steps\"); symmetric gauss "
         "seidel is kept for the steady drag studies at Re = 50 and 100 "
         "(doc/validation.md). auto: ilu where the block carries "
@@ -291,7 +291,7 @@ namespace softsand
         "Hele-Shaw cell against 29 on the fine level). plain set up 1.6x "
         "faster with 11 % less memory on the Fig. 3 pack at N = 6 (24 "
         "FGMRES iterations against 21, same K) and took 6-9 instead of "
-        "7-10 on the Hele-Shaw cell (doc/solver_study.md, \"Plain "
+        "7-10 on the Hele-Shaw cell (doc/notes/solver_study.md, \"Plain "
         "aggregation\").");
       prm.declare_entry(
         "velocity block solver",
@@ -303,7 +303,7 @@ namespace softsand
         "and time growing much faster than the unknowns, for problems of "
         "up to some 1e5 free velocity unknowns. An Oseen block at cell "
         "Reynolds numbers of tens to hundreds is where the V-cycle fails "
-        "and the factorization does not (doc/solver_study.md, \"Oseen\").");
+        "and the factorization does not (doc/notes/solver_study.md, \"Oseen\").");
       prm.declare_entry(
         "grad div",
         "0",
@@ -353,18 +353,20 @@ namespace softsand
         "matrices, velocity block by one ML AMG V-cycle. Both use the "
         "Schur complement approximation below; matrix free assembles only "
         "Q1 matrices (with the least squares commutator, peak memory 933 "
-        "instead of 1,479 MB on the 2-cell Hele-Shaw cell, doc/solver_study.md). Solves with convection "
+        "instead of 1,479 MB on the 2-cell Hele-Shaw cell, doc/notes/solver_study.md). Solves with convection "
         "(Navier-Stokes, transient) and grad-div are matrix based.");
       prm.declare_entry(
         "transient solver",
         "auto",
         Patterns::Selection("auto|matrix free|matrix based"),
         "The solver of the transient model's time steps (Navier-Stokes with "
-        "BDF, the coupled injections). auto: matrix free with fluid/solid "
-        "model = rigid nodes and no grad div, where it is measured faster; "
+        "BDF, the coupled injections). auto: matrix free in 3D with "
+        "fluid/solid model = rigid nodes and no grad div, where it is "
+        "measured faster (in 2D its FGMRES stalls near 1e-7 on the "
+        "convergence study's channel); "
         "matrix based with the penalization, whose contrast in the "
         "velocity block's diagonal slows the matrix-free path's Schur "
-        "solve (doc/solver_study.md). matrix based: the system assembled "
+        "solve (doc/notes/solver_study.md). matrix based: the system assembled "
         "into Trilinos matrices at every step, velocity block by ML AMG with "
         "ILU smoothing, the least-squares commutator (above); matrix free: "
         "the same discrete step with the Q2-Q1 operator applied cell by "
@@ -375,7 +377,7 @@ namespace softsand
         "X = B D^-1 B^T + C (B assembled once per mesh); the fluid force on "
         "the grains from the residual of their rows, no second assembly. "
         "Less memory and setup, more Krylov work: which is faster depends "
-        "on the scene and the step (doc/solver_study.md, \"The transient "
+        "on the scene and the step (doc/notes/solver_study.md, \"The transient "
         "matrix-free step\"). Not with grad div.");
       prm.declare_entry("multigrid smoother degree",
                         "4",
@@ -400,7 +402,7 @@ namespace softsand
         "mesh, AMG on the coarsest. A geometric coarse mesh penalizes every "
         "cell a grain cuts and so sees fatter grains: one sphere at Theta "
         "1e12, N = 12 took 922 FGMRES iterations with geometric levels "
-        "(doc/solver_study.md).");
+        "(doc/notes/solver_study.md).");
       prm.declare_entry("multigrid coarse tolerance",
                         "1e-3",
                         Patterns::Double(1e-12, 0.9),

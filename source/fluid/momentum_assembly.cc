@@ -414,7 +414,7 @@ namespace softsand
                 // does: where the last iterate is far from divergence free
                 // (rigid-node cells) the plain form is not energy-stable,
                 // and Oseen iterations at pore Reynolds numbers of 100
-                // diverged without it (doc/solver_study.md, "Oseen").
+                // diverged without it (doc/notes/solver_study.md, "Oseen").
                 if (kind == Assembly::steady_picard)
                   div_w = trace(grad_w);
                 const double temam =

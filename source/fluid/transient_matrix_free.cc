@@ -54,7 +54,7 @@ namespace softsand
     {
       /// The velocity block's inner Jacobi-GMRES: relative reduction and
       /// iterations per application (measured against 1e-2 / 20 and
-      /// 3e-1 / 4 on the small Hele-Shaw scene, doc/solver_study.md).
+      /// 3e-1 / 4 on the small Hele-Shaw scene, doc/notes/solver_study.md).
       constexpr double       velocity_inner_reduction  = 1e-1;
       constexpr unsigned int velocity_inner_iterations = 8;
       /// The pressure matrix X's CG: relative reduction and iterations.
@@ -1167,7 +1167,7 @@ namespace softsand
         // cell's mean coefficients (1 on imposed rows), and the pressure
         // matrix X = B D^-1 B^T + C of the least-squares commutator with
         // the mesh's B (an element-by-element X, sum_K B_K D^-1 B_K^T, cost
-        // 40-80 FGMRES iterations instead of 10-14: doc/solver_study.md).
+        // 40-80 FGMRES iterations instead of 10-14: doc/notes/solver_study.md).
         matrix_free.initialize_dof_vector(data.inverse_diagonal, 0);
         const auto &coefficients = *data.coefficients;
         std::vector<types::global_dof_index> u_dofs(
@@ -1289,7 +1289,7 @@ namespace softsand
         false);
       // The velocity block's inner solve: a loose Jacobi-GMRES (FGMRES is
       // flexible; tighter inner solves cost more than the outer iterations
-      // they save, doc/solver_study.md).
+      // they save, doc/notes/solver_study.md).
       const TransientBlockPreconditioner<dim> preconditioner(
         data.stokes,
         data.inverse_diagonal,

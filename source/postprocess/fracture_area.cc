@@ -256,10 +256,23 @@ namespace softsand
 
 
     void
-    FractureMap::write_pgm(const std::string &filename) const
+    FractureMap::write_pgm(const std::string &filename,
+                           const unsigned int step,
+                           const double       time) const
     {
       std::ofstream out(filename, std::ios::binary);
-      out << "P5\n" << nx << ' ' << ny << "\n255\n";
+      out << "P5\n"
+          << "# softsand fracture map: step " << step << ", time " << time
+          << " s\n"
+          << "# pixel " << pixel << " m; x from " << origin[0] << " to "
+          << origin[0] + nx * pixel << " m (left to right), y from "
+          << origin[1] << " to " << origin[1] + ny * pixel
+          << " m (bottom to top)\n"
+          << "# grey 0..200: gap-averaged solid fraction 0..1; 255: the "
+             "fracture connected to the inlet\n"
+          << "# fracture area " << area << " m^2, reach " << largest_distance
+          << " m\n"
+          << nx << ' ' << ny << "\n255\n";
       std::vector<unsigned char> row(nx);
       for (unsigned int j = ny; j-- > 0;)
         {

@@ -191,3 +191,30 @@ for mode, rows_expected, tolerance, series in (
             sys.exit(f'FAIL: {mode}: {name} differs from the uninterrupted run')
 print('output series continue: yes')
 PY
+
+# Ctrl-C on a 2-rank run (issue 55): mpirun alone kills the ranks, so
+# scripts/mpirun_stoppable.sh keeps mpirun out of the terminal's reach and
+# turns SIGINT or SIGTERM into SIGUSR1: the ranks finish their step, write
+# a checkpoint and exit with 75. SIGTERM here (a background job ignores
+# SIGINT), once the first step's row is written.
+transient stopped false 1000000 > stopped.prm
+setsid bash "$src/scripts/mpirun_stoppable.sh" 2 "$softsand" stopped.prm \
+  > stopped.log 2>&1 &
+wrapper=$!
+for i in $(seq 1 600); do
+  rows=$(grep -cv '^#' stopped/statistics.txt 2> /dev/null || true)
+  [ "${rows:-0}" -ge 1 ] && break
+  sleep 0.2
+done
+kill -TERM $wrapper
+status=0
+wait $wrapper || status=$?
+[ $status = 75 ] ||
+  { echo "FAIL: stopped run exited with $status, not 75"; cat stopped.log; exit 1; }
+step=$(head -1 stopped/checkpoint.info | cut -d' ' -f1)
+[ "$step" -ge 1 ] && [ "$step" -lt 8 ] ||
+  { echo "FAIL: stopped run's checkpoint is of step $step"; exit 1; }
+grep -q "Stopped on request after step $step" stopped.log ||
+  { echo "FAIL: no 'Stopped on request' line"; cat stopped.log; exit 1; }
+echo "2 ranks stopped by a signal to mpirun_stoppable.sh: exit 75, checkpoint of its last step"
+

@@ -15,7 +15,10 @@ namespace softsand
      * (mpirun passes SIGUSR1 on to every rank; on SIGINT and SIGTERM it
      * kills the ranks) lets a long run finish its step, write a checkpoint
      * and end with exit_code_stopped, so that `simulation control/restart
-     * = true` continues it. A second SIGINT or SIGTERM ends it at once.
+     * = true` continues it. SIGINT or SIGTERM again, a second or more
+     * after the first, ends it at once; within a second it is the same
+     * request (Ctrl-C on mpirun reaches each rank from the terminal and
+     * again from mpirun).
      */
     void
     install_stop_handlers();

@@ -127,6 +127,8 @@ namespace softsand
       std::unique_ptr<postprocess::FractureDevelopment> fracture_development;
       /// Why the fracture counts as developed (empty: not yet).
       std::string developed_fracture;
+      /// Why the time loop ended, for the end-of-run summary.
+      std::string end_reason = "the end time or step count was reached";
 
       unsigned int step               = 0;
       double       time               = 0;

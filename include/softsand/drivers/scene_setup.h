@@ -156,21 +156,37 @@ namespace softsand
                 const double end_time,
                 const double loop_seconds);
 
-    /// The fixed-format results block that tests diff with numdiff, the
-    /// entries of @p results but those @p left_out (timings, counts).
+    /// The results block ("Results (TITLE, SI units):"), one line per
+    /// entry of @p results but those @p left_out (timings, counts): name,
+    /// value and its unit (none for a pure number). Scripts read it.
     void
     print_results(ConditionalOStream                  &pcout,
                   const std::string                   &title,
                   const std::map<std::string, double> &results,
-                  const std::set<std::string>         &left_out);
+                  const std::set<std::string>         &left_out,
+                  const unsigned int                   dim = 3);
 
     /// The results block of a fluid or coupled scene ("Results (3D):"),
     /// without the wall time and the solver counts, which vary with the
-    /// machine and the solver rather than the physics.
+    /// machine and the solver rather than the physics, and without the
+    /// axial flow's columns (flow rate, permeability, pressure drop) in a
+    /// radial injection, where they are zero by construction.
     void
     print_fluid_results(ConditionalOStream                  &pcout,
                         const unsigned int                   dim,
                         const std::map<std::string, double> &results);
+
+    /// What a person reads at the end of a run: how far it went, why it
+    /// ended, the fracture in mm and mm^2 (when measured) and the files
+    /// in @p directory, numbered series counted rather than listed.
+    void
+    print_run_summary(ConditionalOStream                  &pcout,
+                      const std::string                   &steps,
+                      const double                         time,
+                      const std::string                   &end_reason,
+                      const std::map<std::string, double> &results,
+                      const std::string                   &directory,
+                      const MPI_Comm                       comm);
   } // namespace drivers
 } // namespace softsand
 

@@ -37,7 +37,7 @@ namespace softsand
      *   tolerance, stopped at 200 iterations (an inexact solve that stops
      *   at its bound still returns its last iterate: FGMRES). Memory linear
      *   in the unknowns, but on penalized packs the iteration count reaches
-     *   its bound (doc/solver_study.md).
+     *   its bound (doc/notes/solver_study.md).
      */
     class DiscreteBrinkmanSolver
     {

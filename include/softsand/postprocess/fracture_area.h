@@ -155,9 +155,13 @@ namespace softsand
       /**
        * Write the map as a binary PGM image (row 0 at the top = largest y):
        * grey 0..200 the solid fraction 0..1 (capped), 255 the fracture.
+       * Comment lines in the header give the step, the time @p time (s),
+       * the pixel size and the extent (m), the fracture area and reach.
        */
       void
-      write_pgm(const std::string &filename) const;
+      write_pgm(const std::string &filename,
+                const unsigned int step = 0,
+                const double       time = 0) const;
 
     private:
       enum State : unsigned char

@@ -41,7 +41,7 @@ namespace softsand
               std::ostringstream name;
               name << map_directory << "/fracture_map-" << std::setw(5)
                    << std::setfill('0') << s.step << ".pgm";
-              map.write_pgm(name.str());
+              map.write_pgm(name.str(), s.step, s.time);
             }
         }
       MPI_Bcast(areas, 3, MPI_DOUBLE, 0, mpi_communicator);
