@@ -1,7 +1,7 @@
 // A fixed sphere at Re = 50 (parameters/drag_sphere.prm, 4 cells per
 // diameter, 10-diameter box): steady Newton from a Stokes solve with
 // grad-div gamma = rho U d + rho |u| h and the symmetric Gauss-Seidel AMG
-// smoother, as scripts/study_drag.py runs it.
+// smoother, as scripts/studies/study_drag.py runs it.
 // Without them FGMRES did not converge in 1000 iterations; this test fails
 // if the Re >= 50 solve breaks again. The mesh is far too coarse for the
 // drag curve (see doc/validation.md for N = 12): Cd is printed to two

@@ -7,7 +7,7 @@ cutting planes as function objects.
 Everything is in SI units; OpenFOAM's incompressible solvers work with the
 kinematic pressure p / rho, which the readers below convert back.
 
-Used by scripts/benchmark_vs_openfoam.py; see benchmarks/openfoam/README.md.
+Used by scripts/benchmarks/benchmark_vs_openfoam.py; see benchmarks/openfoam/README.md.
 """
 import glob
 import os

@@ -4,7 +4,7 @@ parameters/permeameter.prm: radius 0.25 mm along z, 0.2 mm grain-free
 buffers, flow-rate inlet at z min, pressure outlet at z max), on a
 snappyHexMesh mesh refined LEVEL times at the grains and at the mantle (an
 analytic searchableCylinder): the body-fitted reference for
-scripts/study_permeameter.py. Prints N (mean diameter over the smallest
+scripts/studies/study_permeameter.py. Prints N (mean diameter over the smallest
 cell), cells and K = q mu L / dp between softsand's planes, q = Q / (pi R^2).
 
   python3 benchmarks/openfoam/permeameter.py PACK_FILE PACK_TOP LEVEL [WORKDIR]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Negative control of scripts/scan_outputs.py for the VTU path: write
+"""Negative control of scripts/checks/scan_outputs.py for the VTU path: write
 VTU files whose zlib-compressed, base64-encoded Float32/Float64 arrays (the
 layout deal.II writes: a UInt32 header of block count, block size, last
 block size and compressed sizes, then the compressed data) hold one NaN or
@@ -15,7 +15,7 @@ import sys
 import zlib
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), '..', '..',
-                                'scripts'))
+                                'scripts', 'checks'))
 import scan_outputs  # noqa: E402
 
 
