@@ -288,9 +288,21 @@ namespace softsand
         rate = fluid.solver().max_velocity_per_cell_size();
       }
       const double limit = parameters.coupling.max_courant_number;
-      if (limit > 0)
+      // The accuracy limit: the relative change of the velocity per step is
+      // proportional to the step, so the last step's gives the rate.
+      const double change_limit = parameters.coupling.max_velocity_change;
+      const double last         = fluid.solver().last_transient_step();
+      const double change_rate =
+        (change_limit > 0 && last > 0) ?
+          fluid.solver().relative_velocity_change() / last :
+          0.;
+      const auto too_long = [&](const double step) {
+        return (limit > 0 && step * rate > limit) ||
+               (change_rate > 0 && step * change_rate > change_limit);
+      };
+      if (limit > 0 || change_limit > 0)
         {
-          for (unsigned int halvings = 0; halvings < 10 && dt * rate > limit;
+          for (unsigned int halvings = 0; halvings < 10 && too_long(dt);
                ++halvings)
             dt /= 2;
           // The step grows by doublings, never in two steps running: BDF2
@@ -298,7 +310,6 @@ namespace softsand
           // zero-stable, where restarting it with BDF1 (rho / dt) made
           // convection weigh 1.5x more and a 32 kPa injection take 48-389
           // FGMRES iterations after doublings to Courant 1.42-1.48.
-          const double last = fluid.solver().last_transient_step();
           if (last > 0 && dt > last * (1 + 1e-9))
             dt = (fluid.solver().last_step_ratio() > 1 + 1e-9) ?
                    last :
@@ -458,6 +469,10 @@ namespace softsand
       statistics->add_value("coupling_time_step", dt);
       if (courant_number >= 0)
         statistics->add_value("courant_number", courant_number);
+      if (parameters.coupling.fluid_model ==
+          coupling::CouplingParameters::FluidModel::transient)
+        statistics->add_value("velocity_change",
+                              fluid.solver().relative_velocity_change());
       const dem::GranularStatistics s =
         grain_columns.add_columns(*dem, *statistics, mpi_communicator);
       // A diverged exchange (fluid forces growing step by step) ends here,

@@ -219,6 +219,14 @@ namespace softsand
       transfer.deserialize(pointers);
       solution_transfer.reset();
       set_solutions(pointers);
+      // The last step's relative change, as advance() left it (the coupled
+      // step's accuracy limit reads it): u^n and u^{n-1} are both restored.
+      if (steps_done > 0)
+        {
+          const double norm = values[0].block(0).l2_norm();
+          values[0].block(0) -= values[1].block(0);
+          last_change = values[0].block(0).l2_norm() / std::max(norm, 1e-300);
+        }
     }
 
 

@@ -43,6 +43,11 @@ namespace softsand
       /// fixed steps).
       double max_courant_number = 0;
 
+      /// Transient: the coupling step is also halved until the relative
+      /// change of the velocity per step, predicted from the last step's,
+      /// is at most this (0: off).
+      double max_velocity_change = 0;
+
       /// DEM sub-steps per coupling step (0: as many as the DEM's stable
       /// step needs).
       unsigned int dem_substeps = 0;
