@@ -95,6 +95,8 @@ def main():
             ('simulation control/end time',
              '%.10g' % (args.steps * args.time_step)),
             ('coupling/max courant number', '%g' % args.max_courant),
+            # fixed steps: the accuracy limit off too
+            ('coupling/max velocity change', '0'),
             ('boundary conditions/inlet region/pressure', '%g' % args.pressure),
             ('output/directory', outdir),
             ('output/write vtu', 'true'),
