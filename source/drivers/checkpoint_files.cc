@@ -160,6 +160,22 @@ namespace softsand
         return entries;
       }
 
+      /// Whether @p line is one of checkpoint.info's lines "TAG ENTRY =
+      /// VALUE" for @p tag; if so, ENTRY -> VALUE goes into @p entries.
+      bool
+      read_tagged_entry(const std::string                  &line,
+                        const std::string                  &tag,
+                        std::map<std::string, std::string> &entries)
+      {
+        if (line.rfind(tag, 0) != 0)
+          return false;
+        const auto equals = line.find(" = ");
+        if (equals != std::string::npos)
+          entries[line.substr(tag.size(), equals - tag.size())] =
+            line.substr(equals + 3);
+        return true;
+      }
+
       /// A value shortened for a message (a grain list may be long).
       std::string
       shortened(const std::string &value)
@@ -393,23 +409,8 @@ namespace softsand
       std::map<std::string, std::string> written;
       std::map<std::string, std::string> file_sizes;
       for (std::string line; std::getline(in, line);)
-        if (line.rfind(file_size_tag, 0) == 0)
-          {
-            const auto equals = line.find(" = ");
-            if (equals != std::string::npos)
-              file_sizes[line.substr(file_size_tag.size(),
-                                     equals - file_size_tag.size())] =
-                line.substr(equals + 3);
-          }
-        else if (line.rfind(fingerprint_tag, 0) == 0)
-          {
-            const auto equals = line.find(" = ");
-            if (equals != std::string::npos)
-              written[line.substr(fingerprint_tag.size(),
-                                  equals - fingerprint_tag.size())] =
-                line.substr(equals + 3);
-          }
-        else
+        if (!read_tagged_entry(line, file_size_tag, file_sizes) &&
+            !read_tagged_entry(line, fingerprint_tag, written))
           text += line + '\n';
       // The last line names the mode (checkpoints of earlier versions,
       // always coupled, have none).

@@ -377,11 +377,12 @@ namespace softsand
         return;
       developed_fracture = fracture_development->check(fluid.grains(), time);
       if (!developed_fracture.empty())
-        end_reason = "the fracture developed (" + developed_fracture + ")";
-      if (!developed_fracture.empty())
-        console.pcout << "Developed fracture at step " << step << ", t = "
-                      << time << " s: " << developed_fracture
-                      << "; the run ends after this step." << std::endl;
+        {
+          end_reason = "the fracture developed (" + developed_fracture + ")";
+          console.pcout << "Developed fracture at step " << step << ", t = "
+                        << time << " s: " << developed_fracture
+                        << "; the run ends after this step." << std::endl;
+        }
     }
 
 
