@@ -125,7 +125,8 @@ main(int argc, char **argv)
     {
       const auto parts = series_files("parts/" + series);
       deallog << series << " after the restart: " << parts.size()
-              << " steps, the same files as the uninterrupted run's: "
+              << " steps (" << parts.front() << " to " << parts.back()
+              << "), the same files as the uninterrupted run's: "
               << (parts == series_files("whole/" + series) ? "yes" : "no")
               << std::endl;
     }

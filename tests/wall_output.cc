@@ -132,8 +132,12 @@ main(int argc, char **argv)
   walls[2].normal_force = 0.5;
   std::filesystem::create_directories("results");
   io::WallOutput output("results", "walls", domain);
-  output.write(walls, 0, MPI_COMM_WORLD);
-  output.write(walls, 1e-3, MPI_COMM_WORLD);
+  // Files by step: step 0, step 1 (written twice, as a run's last output
+  // step is: one record), and a DEM step past five digits.
+  output.write(walls, 0, 0, MPI_COMM_WORLD);
+  output.write(walls, 1e-3, 1, MPI_COMM_WORLD);
+  output.write(walls, 1e-3, 1, MPI_COMM_WORLD);
+  output.write(walls, 2e-3, 123456, MPI_COMM_WORLD);
   std::ifstream     in("results/walls_00001.vtu");
   std::stringstream text;
   text << in.rdbuf();
@@ -162,10 +166,15 @@ main(int argc, char **argv)
   std::ifstream     pvd_in("results/walls.pvd");
   std::stringstream pvd;
   pvd << pvd_in.rdbuf();
-  deallog << "PVD lists walls_00000.vtu and walls_00001.vtu: "
+  std::size_t n_records = 0;
+  for (auto at = pvd.str().find("<DataSet"); at != std::string::npos;
+       at      = pvd.str().find("<DataSet", at + 1))
+    ++n_records;
+  deallog << "PVD lists walls_00000.vtu, walls_00001.vtu, walls_123456.vtu: "
           << (pvd.str().find("walls_00000.vtu") != std::string::npos &&
-                  pvd.str().find("walls_00001.vtu") != std::string::npos ?
+                  pvd.str().find("walls_00001.vtu") != std::string::npos &&
+                  pvd.str().find("walls_123456.vtu") != std::string::npos ?
                 "yes" :
                 "NO")
-          << std::endl;
+          << ", records: " << n_records << std::endl;
 }

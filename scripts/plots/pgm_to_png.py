@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Convert the fracture maps (binary PGM, fracture_map-NNNNN.pgm: grey
+"""Convert the fracture maps (binary PGM, fracture_map_NNNNN.pgm: grey
 0..200 the gap-averaged solid fraction 0..1, 255 the fracture connected to
 the inlet) to PNG. With matplotlib: axes in mm from the map's extent, the
 step and time in the title, a legend and the fracture's area and reach

@@ -4,7 +4,7 @@ mid-plane of the gap, from softsand's field output (.pvtu), with the grains'
 cross-sections in that plane.
 
   /usr/bin/python3 scripts/plots/plot_hele_shaw_flow.py \
-    --solution output/RUN/solution_0001.pvtu --grains output/RUN/pack_end.txt \
+    --solution output/RUN/solution_00001.pvtu --grains output/RUN/pack_end.txt \
     --title '32 kPa, 7 ms' --out doc/hele_shaw_flow_small_p32000.png
 
 Left: the pressure (kPa; colours from its 1st to 99th percentile). Right: the in-plane fluid speed (m/s, log scale)

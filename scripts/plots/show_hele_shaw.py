@@ -11,7 +11,7 @@ step. Writes a screenshot and a ParaView state file that the GUI opens
 
 RUN_DIRECTORY is a coupled run's output directory with field output
 (`output/write vtu = true`): solution.pvd, grains.pvd and, with
-`postprocessing/fracture area/enabled = true`, fracture_map-NNNNN.pgm.
+`postprocessing/fracture area/enabled = true`, fracture_map_NNNNN.pgm.
 pvpython is Debian's python3-paraview; without a display run it under
 xvfb-run -a (apt-get install python3-paraview xvfb).
 """
@@ -109,7 +109,7 @@ def main():
     # plane with the pixel size of the postprocessor (a quarter of the mean
     # grain diameter).
     right = simple.CreateView('RenderView')
-    maps = sorted(glob.glob(os.path.join(a.run, 'fracture_map-*.pgm')))
+    maps = sorted(glob.glob(os.path.join(a.run, 'fracture_map_*.pgm')))
     if maps:
         index = min(range(len(times)), key=lambda k: abs(times[k] - time))
         path = maps[min(index, len(maps) - 1)]
@@ -139,7 +139,7 @@ def main():
         print('fracture map: %s (%d x %d pixels of %.3g m)' % (
             os.path.basename(path), pixels.shape[1], pixels.shape[0], pixel))
     else:
-        print('no fracture_map-*.pgm in %s (postprocessing/fracture area/'
+        print('no fracture_map_*.pgm in %s (postprocessing/fracture area/'
               'enabled = false?): the right view stays empty' % a.run)
 
     layout = simple.CreateLayout('Hele-Shaw')

@@ -83,7 +83,7 @@ namespace softsand
           update_grains_from_dem();
           record_grains(dt);
           if (write && grain_output)
-            grain_output->write(dem->particles(), time, mpi_communicator);
+            grain_output->write(dem->particles(), time, step, mpi_communicator);
           const bool checkpointed =
             sc.checkpoint_interval > 0 && step % sc.checkpoint_interval == 0;
           if (checkpointed)
@@ -184,6 +184,12 @@ namespace softsand
           console.pcout << "softsand coupled: resumed at step " << step
                         << ", t = " << time << " s, from the checkpoint in "
                         << p.output.directory << std::endl;
+        }
+      else if (p.output.write_vtu)
+        {
+          // Step 0: the state the run starts from, in every series.
+          fluid.write_initial_state(time);
+          grain_output->write(dem->particles(), time, 0, mpi_communicator);
         }
 
       finest_cell = coupling::min_cell_edge(fluid.triangulation());

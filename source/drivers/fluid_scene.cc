@@ -118,6 +118,8 @@ namespace softsand
           solver.setup_dofs();
           solver.set_time(0);
           solver.start_time_stepping();
+          if (parameters.output.write_vtu)
+            fluid.write_initial_state(time);
         }
       Timer        loop_clock;
       double       last_report = -1e300;

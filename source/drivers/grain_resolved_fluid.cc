@@ -265,7 +265,7 @@ namespace softsand
       if (write_files)
         {
           TimerOutput::Scope t(timer, "postprocess: files");
-          write_fields(time);
+          write_fields(step, time);
           if (parameters.postprocessing.write_grain_forces &&
               !grain_list.empty())
             write_grain_forces();
@@ -276,7 +276,31 @@ namespace softsand
 
     template <int dim>
     void
-    GrainResolvedFluid<dim>::write_fields(const double time) const
+    GrainResolvedFluid<dim>::write_initial_state(const double time)
+    {
+      TimerOutput::Scope t(timer, "postprocess: files");
+      pores.reset();
+      const coupling::GrainForces<dim>      no_forces;
+      const postprocess::FluidSnapshot<dim> snapshot{mesh,
+                                                     *navier_stokes,
+                                                     grain_list,
+                                                     *solids,
+                                                     no_forces,
+                                                     no_forces,
+                                                     0,
+                                                     time,
+                                                     true,
+                                                     nullptr};
+      for (const auto &source : columns)
+        source->write_initial_files(snapshot);
+      write_fields(0, time);
+    }
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::write_fields(const unsigned int step,
+                                          const double       time) const
     {
       if (!field_output)
         return;
@@ -305,6 +329,7 @@ namespace softsand
                           navier_stokes->get_solution(),
                           void_fraction,
                           time,
+                          step,
                           pores ? &pore_space : nullptr);
     }
 

@@ -235,9 +235,15 @@ namespace softsand
     GranularScene::write_grains()
     {
       if (grain_output)
-        grain_output->write(dem->particles(), dem->time(), mpi_communicator);
+        grain_output->write(dem->particles(),
+                            dem->time(),
+                            dem->step_number(),
+                            mpi_communicator);
       if (wall_output)
-        wall_output->write(dem->get_walls(), dem->time(), mpi_communicator);
+        wall_output->write(dem->get_walls(),
+                           dem->time(),
+                           dem->step_number(),
+                           mpi_communicator);
     }
 
 

@@ -28,6 +28,7 @@ namespace softsand
       const TrilinosWrappers::MPI::BlockVector &solution,
       const Vector<float>                      &cell_void_fraction,
       const double                              time,
+      const unsigned int                        step,
       const Vector<float>                      *pore_space)
     {
       const MPI_Comm comm = dof_handler.get_communicator();
@@ -66,7 +67,12 @@ namespace softsand
       data_out.set_flags(flags);
 
       const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-        directory + "/", base_name, series.next_number(), comm, 4, 0);
+        directory + "/",
+        base_name,
+        step,
+        comm,
+        PvdSeries::n_digits(step),
+        0);
       series.add(time, pvtu, comm);
     }
 

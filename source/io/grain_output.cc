@@ -22,6 +22,7 @@ namespace softsand
     void
     GrainOutput::write(const Particles::ParticleHandler<3> &particles,
                        const double                         time,
+                       const unsigned long                  step,
                        const MPI_Comm                       comm)
     {
       using DCI = DataComponentInterpretation::DataComponentInterpretation;
@@ -58,7 +59,12 @@ namespace softsand
       flags.time = time;
       data_out.set_flags(flags);
       const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-        directory + "/", base_name, series.next_number(), comm, 5, 0);
+        directory + "/",
+        base_name,
+        step,
+        comm,
+        PvdSeries::n_digits(step),
+        0);
       series.add(time, pvtu, comm);
     }
   } // namespace io

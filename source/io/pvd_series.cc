@@ -2,9 +2,11 @@
 
 #include <softsand/io/pvd_series.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <regex>
+#include <string>
 
 namespace softsand
 {
@@ -23,12 +25,10 @@ namespace softsand
     PvdSeries::resume(const double time)
     {
       records.clear();
-      counter = 0;
       std::ifstream in(directory + "/" + base_name + ".pvd");
       // deal.II's records: <DataSet timestep="T" group="" part="0"
       // file="BASE_NNNN.pvtu"/>.
       const std::regex record(R"re(timestep="([^"]*)".*file="([^"]*)")re");
-      const std::regex number(R"(_([0-9]+)\.[a-z]+$)");
       for (std::string line; std::getline(in, line);)
         {
           std::smatch m;
@@ -37,13 +37,7 @@ namespace softsand
           const double t = std::stod(m[1]);
           if (t > time * (1 + 1e-12) + 1e-300)
             continue;
-          const std::string file = m[2];
-          records.emplace_back(t, file);
-          std::smatch n;
-          if (std::regex_search(file, n, number))
-            counter = std::max<unsigned int>(counter, std::stoul(n[1]) + 1);
-          else
-            counter = std::max<unsigned int>(counter, records.size());
+          records.emplace_back(t, m[2]);
         }
     }
 
@@ -53,8 +47,10 @@ namespace softsand
                    const std::string &file,
                    const MPI_Comm     comm)
     {
-      records.emplace_back(time, file);
-      ++counter;
+      if (!records.empty() && records.back().second == file)
+        records.back().first = time;
+      else
+        records.emplace_back(time, file);
       if (Utilities::MPI::this_mpi_process(comm) != 0)
         return;
       const std::string pvd = directory + "/" + base_name + ".pvd";
@@ -63,6 +59,21 @@ namespace softsand
         DataOutBase::write_pvd_record(out, records);
       }
       std::rename((pvd + ".tmp").c_str(), pvd.c_str());
+    }
+
+
+    unsigned int
+    PvdSeries::n_digits(const unsigned long step)
+    {
+      return std::max<std::size_t>(5, std::to_string(step).size());
+    }
+
+
+    std::string
+    PvdSeries::file_number(const unsigned long step)
+    {
+      const std::string digits = std::to_string(step);
+      return std::string(n_digits(step) - digits.size(), '0') + digits;
     }
   } // namespace io
 } // namespace softsand

@@ -25,11 +25,11 @@ namespace softsand
     void
     WallOutput::write(const std::vector<dem::Wall> &walls,
                       const double                  time,
+                      const unsigned long           step,
                       const MPI_Comm                comm)
     {
-      std::ostringstream number;
-      number << std::setw(5) << std::setfill('0') << series.next_number();
-      const std::string vtu = base_name + "_" + number.str() + ".vtu";
+      const std::string vtu =
+        base_name + "_" + PvdSeries::file_number(step) + ".vtu";
       if (Utilities::MPI::this_mpi_process(comm) != 0)
         {
           series.add(time, vtu, comm);

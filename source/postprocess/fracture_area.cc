@@ -25,7 +25,7 @@ namespace softsand
         "and z max of the mesh box) on a pixel grid of the xy plane, "
         "pixels below the open threshold flood-filled from the inlet "
         "(boundary conditions/inlet region, axis along z). Writes "
-        "fracture_map-NNNNN.pgm with each field output.");
+        "fracture_map_NNNNN.pgm with each field output.");
       prm.declare_entry("pixel size",
                         "0",
                         Patterns::Double(0),

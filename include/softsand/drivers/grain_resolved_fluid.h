@@ -88,6 +88,11 @@ namespace softsand
                   const double       time,
                   const bool         write_files);
 
+      /// The files of step 0 (fields, fracture map) at @p time, before the
+      /// first solve; no statistics row.
+      void
+      write_initial_state(const double time);
+
       parallel::distributed::Triangulation<dim> &
       triangulation()
       {
@@ -148,7 +153,7 @@ namespace softsand
       void
       check_resolution() const;
       void
-      write_fields(const double time) const;
+      write_fields(const unsigned int step, const double time) const;
       void
       write_grain_forces() const;
 

@@ -39,11 +39,14 @@ namespace softsand
         series.resume(time);
       }
 
+      /// The fields at @p time, after step @p step (0: the initial state;
+      /// a steady solve's cycle), in BASE_NNNNN.pvtu.
       void
       write(const DoFHandler<dim>                    &dof_handler,
             const TrilinosWrappers::MPI::BlockVector &solution,
             const Vector<float>                      &cell_void_fraction,
             const double                              time,
+            const unsigned int                        step,
             const Vector<float> *pore_space = nullptr);
 
     private:

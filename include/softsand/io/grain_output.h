@@ -33,9 +33,12 @@ namespace softsand
         series.resume(time);
       }
 
+      /// The grains at @p time, the state after step @p step (0: the
+      /// initial state), in BASE_NNNNN.pvtu (see PvdSeries::file_number()).
       void
       write(const Particles::ParticleHandler<3> &particles,
             const double                         time,
+            const unsigned long                  step,
             const MPI_Comm                       comm);
 
     private:

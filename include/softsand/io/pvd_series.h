@@ -13,11 +13,12 @@ namespace softsand
   {
     /**
      * The PVD time series of one kind of output (fields, grains, walls):
-     * the number of the next step's files and the list of their records,
-     * rewritten atomically (temporary file + rename) after each step, so
-     * that a viewer never sees a reference to a partial step. A restarted
-     * run resumes the series of the run it continues instead of numbering
-     * from 0 again and overwriting its files.
+     * the list of its records, rewritten atomically (temporary file +
+     * rename) after each step, so that a viewer never sees a reference to
+     * a partial step. Every series names its files by the step they belong
+     * to (step 0 the initial state; see file_number()), so a restarted run
+     * that resumes the series writes the steps after its checkpoint under
+     * their own names and never overwrites another step's files.
      */
     class PvdSeries
     {
@@ -25,27 +26,29 @@ namespace softsand
       PvdSeries(const std::string &directory, const std::string &base_name);
 
       /// Continue the series in the directory's BASE.pvd: its records up to
-      /// @p time are kept, the numbering continues after the last of them.
-      /// Every rank reads the file.
+      /// @p time are kept. Every rank reads the file.
       void
       resume(const double time);
 
-      /// The number of the next step's files.
-      unsigned int
-      next_number() const
-      {
-        return counter;
-      }
-
       /// The step's record file @p file (relative to the directory) at
-      /// @p time; rank 0 rewrites the .pvd.
+      /// @p time; rank 0 rewrites the .pvd. A second record of the same
+      /// file (a step written again at the run's end) replaces the first.
       void
       add(const double time, const std::string &file, const MPI_Comm comm);
+
+      /// The digits of the number in the files of step @p step: five, more
+      /// when the step needs them (DEM steps).
+      static unsigned int
+      n_digits(const unsigned long step);
+
+      /// The number in the name of the files of step @p step, e.g.
+      /// "00012".
+      static std::string
+      file_number(const unsigned long step);
 
     private:
       std::string                                 directory;
       std::string                                 base_name;
-      unsigned int                                counter = 0;
       std::vector<std::pair<double, std::string>> records;
     };
   } // namespace io

@@ -35,9 +35,11 @@ namespace softsand
                  const std::string    &base_name,
                  const BoundingBox<3> &domain);
 
+      /// The walls at @p time, after step @p step, in BASE_NNNNN.vtu.
       void
       write(const std::vector<dem::Wall> &walls,
             const double                  time,
+            const unsigned long           step,
             const MPI_Comm                comm);
 
       /// A restarted run continues the series of the run it resumes at

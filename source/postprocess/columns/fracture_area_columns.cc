@@ -1,3 +1,4 @@
+#include <softsand/io/pvd_series.h>
 #include <softsand/postprocess/columns/fracture_area_columns.h>
 
 #include <iomanip>
@@ -36,18 +37,36 @@ namespace softsand
           areas[0] = map.fracture_area();
           areas[1] = map.open_area();
           areas[2] = map.reach();
-          if (s.write_fields && !map_directory.empty())
-            {
-              std::ostringstream name;
-              name << map_directory << "/fracture_map-" << std::setw(5)
-                   << std::setfill('0') << s.step << ".pgm";
-              map.write_pgm(name.str(), s.step, s.time);
-            }
+          if (s.write_fields)
+            write_map(map, s);
         }
       MPI_Bcast(areas, 3, MPI_DOUBLE, 0, mpi_communicator);
       row["fracture_area"] = areas[0];
       row["open_area"]     = areas[1];
       row["fracture_reach"] = areas[2];
+    }
+
+
+    void
+    FractureAreaColumns::write_initial_files(const FluidSnapshot<3> &s) const
+    {
+      if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        write_map(fracture_map_of_cell(
+                    s.grains, inlet, lower_corner, upper_corner, parameters),
+                  s);
+    }
+
+
+    void
+    FractureAreaColumns::write_map(const FractureMap      &map,
+                                   const FluidSnapshot<3> &s) const
+    {
+      if (map_directory.empty())
+        return;
+      map.write_pgm(map_directory + "/fracture_map_" +
+                      io::PvdSeries::file_number(s.step) + ".pgm",
+                    s.step,
+                    s.time);
     }
   } // namespace postprocess
 } // namespace softsand

@@ -58,6 +58,12 @@ namespace softsand
 
       virtual void
       add_columns(const FluidSnapshot<dim> &snapshot, Columns &row) const = 0;
+
+      /// The files of the initial state (step 0, before any solve) of a
+      /// source that writes files: no columns, no row.
+      virtual void
+      write_initial_files(const FluidSnapshot<dim> &) const
+      {}
     };
 
     template <int dim>

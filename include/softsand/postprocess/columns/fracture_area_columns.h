@@ -29,7 +29,14 @@ namespace softsand
       add_columns(const FluidSnapshot<3> &snapshot,
                   Columns                &row) const override;
 
+      /// The map of the pack before the injection.
+      void
+      write_initial_files(const FluidSnapshot<3> &snapshot) const override;
+
     private:
+      void
+      write_map(const FractureMap &map, const FluidSnapshot<3> &s) const;
+
       const FractureAreaParameters   parameters;
       const fluid::PressureRegion<3> inlet;
       const Point<3>                 lower_corner, upper_corner;
