@@ -37,6 +37,7 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/sparsity_tools.h>
 #include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/vector_memory.h>
 
 #include <deal.II/matrix_free/fe_evaluation.h>
 
@@ -1341,6 +1342,12 @@ namespace softsand
       lifting.reinit(0);
       delta.reinit(0);
       }
+      // The Krylov bases stay in deal.II's vector pools after a solve (two
+      // block vectors per FGMRES iteration, 350 B per DoF at 22
+      // iterations): give them back, or they sit beside the next step's X
+      // and its product, the step's peak (doc/notes/solver_study.md).
+      GrowingVectorMemory<BlockVectorType>::release_unused_memory();
+      GrowingVectorMemory<VectorType>::release_unused_memory();
 
       // Reactions: F - K u of the rigid nodes' rows (and of the hanging
       // nodes of rigid parents, split by their weights) and the residual
@@ -1349,6 +1356,22 @@ namespace softsand
       {
         TimerOutput::Scope t(timer, "fluid: reactions");
         rigid_reactions.clear();
+        // (grain, node) -> the node's position and reaction.
+        struct GrainNodeHash
+        {
+          std::size_t
+          operator()(const std::pair<int, types::global_dof_index> &k) const
+          {
+            return std::hash<types::global_dof_index>()(k.second) * 31 +
+                   std::hash<int>()(k.first);
+          }
+        };
+        std::unordered_map<std::pair<int, types::global_dof_index>,
+                           std::pair<Point<dim>, Tensor<1, dim>>,
+                           GrainNodeHash>
+          node_reactions;
+        node_reactions.reserve(rigid_dof_grain.size() / dim +
+                               hanging_rigid_parents.size());
         VectorType u_full, p_full;
         matrix_free.initialize_dof_vector(u_full, 0);
         matrix_free.initialize_dof_vector(p_full, 1);
@@ -1509,14 +1532,21 @@ namespace softsand
                       if (node == rigid_dof_grain.end() &&
                           hanging == hanging_rigid_parents.end())
                         continue;
-                      const unsigned int c =
-                        fe_velocity.system_to_component_index(i).first;
+                      const auto [c, base] =
+                        fe_velocity.system_to_component_index(i);
                       const double r = residual(i);
-                      const auto   add = [&](const int grain, const double w) {
-                        Tensor<1, dim> f;
-                        f[c] = w * r;
-                        rigid_reactions.emplace_back(
-                          grain, node_values.quadrature_point(i), f);
+                      // One record per grain and node (its first
+                      // component's DoF): a node's cells and components
+                      // sum into it, as they do in the grain's force and
+                      // torque.
+                      const types::global_dof_index node_key =
+                        u_dofs[fe_velocity.component_to_system_index(0, base)];
+                      const auto add = [&](const int grain, const double w) {
+                        auto [record, added] = node_reactions.try_emplace(
+                          std::make_pair(grain, node_key),
+                          node_values.quadrature_point(i),
+                          Tensor<1, dim>());
+                        record->second.second[c] += w * r;
                       };
                       if (node != rigid_dof_grain.end())
                         {
@@ -1560,6 +1590,12 @@ namespace softsand
                       }
                 }
             }
+        rigid_reactions.reserve(node_reactions.size());
+        for (const auto &[key, reaction] : node_reactions)
+          rigid_reactions.emplace_back(key.first,
+                                       reaction.first,
+                                       reaction.second);
+        node_reactions.clear();
         // The traction faces' term acts on rows, not cells: the rigid
         // nodes' share once per owned node, at the node.
         if (data.has_traction)
