@@ -1542,11 +1542,11 @@ namespace softsand
                       const types::global_dof_index node_key =
                         u_dofs[fe_velocity.component_to_system_index(0, base)];
                       const auto add = [&](const int grain, const double w) {
-                        auto [record, added] = node_reactions.try_emplace(
-                          std::make_pair(grain, node_key),
-                          node_values.quadrature_point(i),
-                          Tensor<1, dim>());
-                        record->second.second[c] += w * r;
+                        node_reactions
+                          .try_emplace(std::make_pair(grain, node_key),
+                                       node_values.quadrature_point(i),
+                                       Tensor<1, dim>())
+                          .first->second.second[c] += w * r;
                       };
                       if (node != rigid_dof_grain.end())
                         {

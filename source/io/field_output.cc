@@ -15,9 +15,7 @@ namespace softsand
     template <int dim>
     FieldOutput<dim>::FieldOutput(const std::string &directory,
                                   const std::string &base_name)
-      : directory(directory)
-      , base_name(base_name)
-      , series(directory, base_name)
+      : series(directory, base_name)
     {}
 
 
@@ -66,14 +64,7 @@ namespace softsand
       flags.write_higher_order_cells = true;
       data_out.set_flags(flags);
 
-      const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-        directory + "/",
-        base_name,
-        step,
-        comm,
-        PvdSeries::n_digits(step),
-        0);
-      series.add(time, pvtu, comm);
+      series.write_step(data_out, step, time, comm);
     }
 
     template class FieldOutput<2>;

@@ -13,9 +13,7 @@ namespace softsand
   {
     GrainOutput::GrainOutput(const std::string &directory,
                              const std::string &base_name)
-      : directory(directory)
-      , base_name(base_name)
-      , series(directory, base_name)
+      : series(directory, base_name)
     {}
 
 
@@ -58,14 +56,7 @@ namespace softsand
       DataOutBase::VtkFlags flags;
       flags.time = time;
       data_out.set_flags(flags);
-      const std::string pvtu = data_out.write_vtu_with_pvtu_record(
-        directory + "/",
-        base_name,
-        step,
-        comm,
-        PvdSeries::n_digits(step),
-        0);
-      series.add(time, pvtu, comm);
+      series.write_step(data_out, step, time, comm);
     }
   } // namespace io
 } // namespace softsand

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
-#include <sstream>
 
 namespace softsand
 {

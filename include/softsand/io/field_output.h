@@ -50,9 +50,7 @@ namespace softsand
             const Vector<float> *pore_space = nullptr);
 
     private:
-      std::string directory;
-      std::string base_name;
-      PvdSeries   series;
+      PvdSeries series;
     };
   } // namespace io
 } // namespace softsand

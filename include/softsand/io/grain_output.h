@@ -42,9 +42,7 @@ namespace softsand
             const MPI_Comm                       comm);
 
     private:
-      std::string directory;
-      std::string base_name;
-      PvdSeries   series;
+      PvdSeries series;
     };
   } // namespace io
 } // namespace softsand

@@ -1,6 +1,7 @@
 #ifndef softsand_io_pvd_series_h
 #define softsand_io_pvd_series_h
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/mpi.h>
 
 #include <string>
@@ -35,6 +36,21 @@ namespace softsand
       /// file (a step written again at the run's end) replaces the first.
       void
       add(const double time, const std::string &file, const MPI_Comm comm);
+
+      /// Step @p step of a deal.II DataOut (fields, particles) at @p time:
+      /// BASE_NNNNN.pvtu with a .vtu piece per rank, and its record.
+      template <int dim, int spacedim>
+      void
+      write_step(const dealii::DataOutInterface<dim, spacedim> &data_out,
+                 const unsigned long                            step,
+                 const double                                   time,
+                 const MPI_Comm                                 comm)
+      {
+        add(time,
+            data_out.write_vtu_with_pvtu_record(
+              directory + "/", base_name, step, comm, n_digits(step), 0),
+            comm);
+      }
 
       /// The digits of the number in the files of step @p step: five, more
       /// when the step needs them (DEM steps).

@@ -1,8 +1,6 @@
 #include <softsand/io/pvd_series.h>
 #include <softsand/postprocess/columns/fracture_area_columns.h>
 
-#include <iomanip>
-#include <sstream>
 
 namespace softsand
 {
@@ -50,7 +48,8 @@ namespace softsand
     void
     FractureAreaColumns::write_initial_files(const FluidSnapshot<3> &s) const
     {
-      if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      if (!map_directory.empty() &&
+          Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         write_map(fracture_map_of_cell(
                     s.grains, inlet, lower_corner, upper_corner, parameters),
                   s);
