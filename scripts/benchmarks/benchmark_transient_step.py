@@ -3,8 +3,9 @@
 (doc/notes/solver_study.md, "The transient matrix-free step").
 
 Runs a transient scene (default: the Hele-Shaw injection) with each value of
-'fluid solver/transient solver' in turn, --repeat times, alternating, for
---steps coupling steps each, and prints per run and as medians over the
+'fluid solver/transient solver' in turn (and, with --linear-tolerances, each
+value of 'fluid solver/linear tolerance' with each), --repeat times,
+alternating, for --steps coupling steps each, and prints per run and as medians over the
 repeats:
   - seconds per coupled step, the median over the steps after the first
     (the statistics' wall_time column);
@@ -13,13 +14,17 @@ repeats:
     (summed over ranks);
   - FGMRES iterations per step;
   - the radial flow rate and the largest fluid force on a grain of the last
-    step, and their relative difference against the first solver's.
+    step, their relative difference against the first run's, and the
+    largest difference of one grain's force against the first run's,
+    relative to the largest force.
 
   python3 scripts/benchmarks/benchmark_transient_step.py --cells-per-diameter 2.66 \\
       --pressure 16000 --steps 11 --ranks 2 --repeat 1
   python3 scripts/benchmarks/benchmark_transient_step.py \\
       --scene parameters/hele_shaw_small.prm --cells-per-diameter 2.66 \\
       --ranks 1 --end-time 1e-3
+  python3 scripts/benchmarks/benchmark_transient_step.py --cells-per-diameter 2.66 \
+      --steps 6 --solvers new --linear-tolerances 1e-8,1e-6,1e-5,1e-4
 """
 import argparse
 import os
@@ -57,18 +62,50 @@ def largest_grain_force(directory):
     return largest
 
 
+def grain_forces(directory):
+    """{grain: (fx, fy, fz)} from <directory>/grain_forces.txt ({} if
+    absent)."""
+    path = os.path.join(directory, 'grain_forces.txt')
+    if not os.path.exists(path):
+        return {}
+    forces, columns = {}, None
+    for line in open(path):
+        parts = line.split()
+        if line.startswith('#'):
+            columns = [parts[1:].index(c) for c in ('fx', 'fy', 'fz')
+                       if c in parts[1:]]
+            continue
+        if parts and columns:
+            forces[int(parts[0])] = [float(parts[c]) for c in columns]
+    return forces
+
+
+def largest_force_difference(forces, reference):
+    """max over grains |F - F_ref|, relative to max |F_ref|."""
+    norm = lambda f: sum(v * v for v in f) ** 0.5
+    common = [g for g in reference if g in forces]
+    largest = max([norm(reference[g]) for g in common] or [0.])
+    if largest == 0.:
+        return 0.
+    return max(norm([x - y for x, y in zip(forces[g], reference[g])])
+               for g in common) / largest
+
+
 def run(a, label, repeat):
     text = open(os.path.join(ROOT, a.scene)).read()
-    name = '%s_%d' % (label, repeat)
+    name = '%s_%d' % (label.replace('@', '_tol'), repeat)
+    solver, _, tolerance = label.partition('@')
     outdir = os.path.join(a.workdir, name)
     if os.path.exists(outdir):
         subprocess.run(['rm', '-rf', outdir], check=True)
-    overrides = [('fluid solver/transient solver', SOLVERS[label]),
+    overrides = [('fluid solver/transient solver', SOLVERS[solver]),
                  ('output/directory', outdir),
                  ('output/write vtu', 'false'),
                  ('output/output interval', '1000000'),
                  ('output/verbosity', 'normal'),
                  ('coupling/fluid model', 'transient')]
+    if tolerance:
+        overrides.append(('fluid solver/linear tolerance', tolerance))
     if a.steps:
         overrides.append(('simulation control/max time steps', str(a.steps)))
     if a.end_time:
@@ -114,7 +151,8 @@ def run(a, label, repeat):
         'peak_MB': max(peaks or [0]) / 1024.,
         'bytes_per_dof': sum(peaks) * 1024. / int(rows[-1]['dofs']),
         'timers': {k: v[1] / n for k, v in timers.items() if k != 'total'},
-        'flow': flow, 'force': largest_grain_force(outdir)}
+        'flow': flow, 'force': largest_grain_force(outdir),
+        'forces': grain_forces(outdir)}
 
 
 def main():
@@ -133,15 +171,30 @@ def main():
                     help='comma-separated: old (matrix based), new (matrix '
                          'free); the first is the reference of the '
                          'differences')
+    ap.add_argument('--linear-tolerances', default='',
+                    help='comma-separated values of \'fluid solver/linear '
+                         'tolerance\' run with each solver (empty: the '
+                         'scene\'s); the first is the reference')
     ap.add_argument('--build', default='build')
     ap.add_argument('--workdir', default='output/benchmark_transient_step')
     prm_tools.add_set_argument(ap, 'the scene')
     a = ap.parse_args()
-    labels = a.solvers.split(',')
-    for label in labels:
-        if label not in SOLVERS:
+    solvers = a.solvers.split(',')
+    for solver in solvers:
+        if solver not in SOLVERS:
             raise SystemExit("--solvers: unknown '%s' (known: %s)" %
-                             (label, ', '.join(SOLVERS)))
+                             (solver, ', '.join(SOLVERS)))
+    tolerances = [t for t in a.linear_tolerances.split(',') if t]
+    for t in tolerances:
+        try:
+            ok = 0. < float(t) < 1.
+        except ValueError:
+            ok = False
+        if not ok:
+            raise SystemExit("--linear-tolerances: '%s' is not a number in "
+                             "(0, 1)" % t)
+    labels = [s + ('@' + t if t else '') for s in solvers
+              for t in (tolerances or [''])]
     if a.repeat < 1 or a.ranks < 1:
         raise SystemExit('--repeat and --ranks must be >= 1')
     if not os.path.exists(os.path.join(ROOT, a.build, 'softsand')):
@@ -161,21 +214,24 @@ def main():
     print()
     print('| solver | s per step (median) | peak MB/rank | B/DoF | '
           'FGMRES per step | Q [m^3/s] | largest grain force [N] | '
-          'dQ vs %s | dF vs %s |' % (labels[0], labels[0]))
-    print('|---|---|---|---|---|---|---|---|---|')
+          'dQ vs %s | dF vs %s | max dF per grain vs %s |' % (
+              labels[0], labels[0], labels[0]))
+    print('|---|---|---|---|---|---|---|---|---|---|')
     ref = results[labels[0]][0]
     for label in labels:
         rs = results[label]
         med = statistics.median
         q, f = rs[0]['flow'], rs[0]['force']
         print('| %s (%s) | %.2f | %.0f | %.0f | %.1f | %.6e | %.6e | %.2e | '
-              '%.2e |' % (
-                  label, SOLVERS[label], med([r['step_median'] for r in rs]),
+              '%.2e | %.2e |' % (
+                  label, SOLVERS[label.partition('@')[0]],
+                  med([r['step_median'] for r in rs]),
                   med([r['peak_MB'] for r in rs]),
                   med([r['bytes_per_dof'] for r in rs]),
                   statistics.mean(rs[0]['iterations']), q, f,
                   abs(q - ref['flow']) / max(abs(ref['flow']), 1e-300),
-                  abs(f - ref['force']) / max(abs(ref['force']), 1e-300)))
+                  abs(f - ref['force']) / max(abs(ref['force']), 1e-300),
+                  largest_force_difference(rs[0]['forces'], ref['forces'])))
     print()
     sections = sorted({k for label in labels for r in results[label]
                        for k in r['timers']})

@@ -2,6 +2,7 @@
 // the reactions of the rows they fix (and the paper's Eq. 7 diagnostic).
 
 #include <softsand/fluid/block_schur_preconditioner.h>
+#include <softsand/fluid/node_reactions.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 #include <softsand/base/parameter_tools.h>
 #include <softsand/base/warnings.h>
@@ -51,6 +52,9 @@ namespace softsand
       FEValues<dim>  fe_values(fe, nodes, update_quadrature_points);
       Vector<double> local_solution(fe.n_dofs_per_cell());
       Tensor<1, dim> force;
+      NodeReactionSum<dim> node_reactions;
+      node_reactions.reserve(rigid_dof_grain.size() / dim +
+                             hanging_rigid_parents.size());
 
       const auto add_rigid_reactions =
         [&](const typename DoFHandler<dim>::active_cell_iterator &cell,
@@ -64,11 +68,13 @@ namespace softsand
             double r = rhs(k);
             for (unsigned int j = 0; j < dofs.size(); ++j)
               r -= matrix(k, j) * local_solution(j);
-            Tensor<1, dim> f;
-            f[fe.system_to_component_index(k).first] = weight * r;
-            rigid_reactions.emplace_back(grain,
-                                         fe_values.quadrature_point(k),
-                                         f);
+            // The node by its first component's DoF.
+            const auto [c, base] = fe.system_to_component_index(k);
+            node_reactions.add(grain,
+                               dofs[fe.component_to_system_index(0, base)],
+                               fe_values.quadrature_point(k),
+                               c,
+                               weight * r);
           };
           // A node whose target blends grains (penalization limit) hands
           // each its share of the reaction.
@@ -151,6 +157,7 @@ namespace softsand
             add_boundary_reaction(matrix, rhs);
         };
       assemble(kind, dt, bdf_order, &both, &either);
+      node_reactions.move_to(rigid_reactions);
 
       force += pressure_face_force();
       last_boundary_force = Utilities::MPI::sum(force, mpi_communicator);

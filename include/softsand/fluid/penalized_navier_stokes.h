@@ -353,6 +353,23 @@ namespace softsand
       /// its reactions (rigid nodes, walls) from the rows' residual.
       unsigned int
       advance_matrix_free(const double time_step, const unsigned int order);
+      /// The phases of advance_matrix_free(). This step's constraints,
+      /// coefficients, right-hand side and lifting, the traction and
+      /// smoothing terms (transient_matrix_free.cc).
+      void
+      assemble_matrix_free_step(const double time_step, const unsigned int order);
+      /// D = diag(A), X = B D^-1 B^T + C and X's AMG
+      /// (transient_matrix_free_solve.cc).
+      void
+      setup_matrix_free_preconditioner(const double       time_step,
+                                       const unsigned int order);
+      /// FGMRES with the block preconditioner; the solution accepted.
+      void
+      solve_matrix_free_step();
+      /// The reactions of rigid nodes and walls from their rows' residual
+      /// (transient_matrix_free_reactions.cc).
+      void
+      compute_matrix_free_reactions(const unsigned int order);
       /// The force of the prescribed pressures p_b on the pressure faces of
       /// this rank's cells (both paths' boundary force).
       Tensor<1, dim>

@@ -1,0 +1,294 @@
+// The transient matrix-free step's reactions: the fluid force on each
+// rigid node (and on the walls) from the residual F - K u of its rows,
+// cell by cell with the step's own kernels (no second assembly), summed
+// into one record per grain and node.
+
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_tools.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/matrix_free/fe_evaluation.h>
+
+#include <softsand/fluid/node_reactions.h>
+#include <softsand/fluid/transient_matrix_free.h>
+
+#include <map>
+#include <utility>
+
+namespace softsand
+{
+  namespace fluid
+  {
+    using namespace internal;
+
+    template <int dim>
+    void
+    PenalizedNavierStokes<dim>::compute_matrix_free_reactions(
+      const unsigned int order)
+    {
+      using VectorType = LinearAlgebra::distributed::Vector<double>;
+      using Evaluation = typename VelocityOperator<dim, 2, double>::Evaluation;
+      TransientMatrixFree           &data        = *transient_matrix_free;
+      const MatrixFree<dim, double> &matrix_free = *data.matrix_free;
+      const auto &partitioner_u = *matrix_free.get_vector_partitioner(0);
+      const auto &partitioner_p = *matrix_free.get_vector_partitioner(1);
+      const unsigned int owned_u   = partitioner_u.locally_owned_size();
+      const unsigned int owned_p   = partitioner_p.locally_owned_size();
+      const unsigned int n_batches = matrix_free.n_cell_batches();
+      const bool penalized = solid_field != nullptr && !rigid_nodes();
+      constexpr unsigned int n_q = Utilities::pow(3, dim);
+      const auto &right_hand_side = data.right_hand_side;
+      // Reactions: F - K u of the rigid nodes' rows (and of the hanging
+      // nodes of rigid parents, split by their weights) and the residual
+      // summed over the rows of velocity-constrained boundary faces, from
+      // each cell's own terms as compute_reactions() (no second assembly).
+      TimerOutput::Scope t(timer, "fluid: reactions");
+      rigid_reactions.clear();
+      NodeReactionSum<dim> node_reactions;
+      node_reactions.reserve(rigid_dof_grain.size() / dim +
+                             hanging_rigid_parents.size());
+      VectorType u_full, p_full;
+      matrix_free.initialize_dof_vector(u_full, 0);
+      matrix_free.initialize_dof_vector(p_full, 1);
+      for (unsigned int i = 0; i < owned_u; ++i)
+        u_full.local_element(i) =
+          solution.block(0)(partitioner_u.local_to_global(i));
+      for (unsigned int i = 0; i < owned_p; ++i)
+        p_full.local_element(i) =
+          solution.block(1)(partitioner_p.local_to_global(i));
+      u_full.update_ghost_values();
+      p_full.update_ghost_values();
+      VectorType traction_force;
+      if (data.has_traction)
+        {
+          matrix_free.initialize_dof_vector(traction_force, 0);
+          data.traction.vmult(traction_force, u_full);
+          traction_force.update_ghost_values();
+        }
+
+      const std::vector<unsigned int> h2l =
+        FETools::hierarchic_to_lexicographic_numbering<dim>(2);
+      const unsigned int n_scalar = h2l.size();
+      Evaluation         u(matrix_free, 0, 0), u_old(matrix_free, 0, 0),
+        u_older(matrix_free, 0, 0);
+      FEEvaluation<dim, 1, 3, 1, double> p(matrix_free, 1, 0);
+      const Quadrature<dim> nodes(fe_velocity.get_unit_support_points());
+      FEValues<dim>         node_values(data.mapping,
+                                fe_velocity,
+                                nodes,
+                                update_quadrature_points);
+      std::vector<types::global_dof_index> u_dofs(
+        fe_velocity.n_dofs_per_cell());
+      std::vector<bool> on_face(fe_velocity.n_dofs_per_cell());
+      std::vector<Point<dim>>     points(n_q);
+      std::vector<double>         void_fraction(n_q, 1.);
+      std::vector<Tensor<1, dim>> solid_velocity(n_q);
+      std::vector<int>            solid_index(n_q, -1);
+      Vector<double>              force_value(dim);
+      Tensor<1, dim>              boundary_force;
+      const bool hanging_rigid = !hanging_rigid_parents.empty();
+      std::map<types::global_dof_index, std::pair<unsigned int, Point<dim>>>
+        owned_rigid_nodes;
+      const QGauss<dim - 1>            face_quadrature(fe.degree + 1);
+      FEFaceValues<dim>                face_values(data.mapping,
+                                    fe_velocity,
+                                    face_quadrature,
+                                    update_values | update_normal_vectors |
+                                      update_JxW_values);
+      Vector<double> face_term(fe_velocity.n_dofs_per_cell());
+      for (unsigned int batch = 0; batch < n_batches; ++batch)
+        for (unsigned int lane = 0;
+             lane < matrix_free.n_active_entries_per_cell_batch(batch);
+             ++lane)
+          {
+            const auto cell = matrix_free.get_cell_iterator(batch, lane, 0);
+            cell->get_dof_indices(u_dofs);
+            bool has_rigid = false;
+            for (const auto i : u_dofs)
+              if ((data.velocity_flags[partitioner_u.global_to_local(i)] &
+                   2) ||
+                  (hanging_rigid && hanging_rigid_parents.count(i)))
+                {
+                  has_rigid = true;
+                  break;
+                }
+            std::fill(on_face.begin(), on_face.end(), false);
+            bool on_wall = false;
+            for (const auto f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  boundary_conditions.imposes_velocity(
+                    cell->face(f)->boundary_id()))
+                {
+                  on_wall = true;
+                  for (unsigned int k = 0;
+                       k < fe_velocity.n_dofs_per_face();
+                       ++k)
+                    on_face[fe_velocity.face_to_cell_index(k, f)] = true;
+                }
+            if (!has_rigid && !on_wall)
+              continue;
+
+            // The cell's K u - F, lexicographic per component.
+            u.reinit(batch);
+            p.reinit(batch);
+            u.read_dof_values_plain(u_full);
+            p.read_dof_values_plain(p_full);
+            u.evaluate(EvaluationFlags::values | EvaluationFlags::gradients);
+            p.evaluate(EvaluationFlags::values);
+            const bool reservoir = data.reservoir[batch];
+            if (!reservoir)
+              {
+                u_old.reinit(batch);
+                u_old.read_dof_values_plain(data.old_velocity);
+                u_old.evaluate(EvaluationFlags::values);
+                if (order == 2)
+                  {
+                    u_older.reinit(batch);
+                    u_older.read_dof_values_plain(data.older_velocity);
+                    u_older.evaluate(EvaluationFlags::values);
+                  }
+                for (unsigned int q = 0; q < n_q; ++q)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    points[q][d] = u.quadrature_point(q)[d][lane];
+                if (penalized)
+                  evaluate_solids(*cell,
+                                  points,
+                                  void_fraction,
+                                  solid_velocity,
+                                  solid_index);
+              }
+            Tensor<1, dim, VectorizedArray<double>> force;
+            Tensor<2, dim, VectorizedArray<double>> flux;
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                const auto grad = u.get_gradient(q);
+                data.velocity_operator->quadrature_terms(
+                  batch, q, u.get_value(q), grad, force, flux);
+                const auto pressure = p.get_value(q);
+                for (unsigned int d = 0; d < dim; ++d)
+                  flux[d][d] -= pressure;
+                if (!reservoir)
+                  {
+                    // Minus the right-hand side of assemble().
+                    Tensor<1, dim> u_o, u_oo;
+                    const auto     v1 = u_old.get_value(q);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      u_o[d] = v1[d][lane];
+                    if (order == 2)
+                      {
+                        const auto v2 = u_older.get_value(q);
+                        for (unsigned int d = 0; d < dim; ++d)
+                          u_oo[d] = v2[d][lane];
+                      }
+                    const Tensor<1, dim> right = right_hand_side(
+                      points[q], u_o, u_oo, void_fraction[q],
+                      solid_velocity[q]);
+                    for (unsigned int d = 0; d < dim; ++d)
+                      force[d][lane] -= right[d];
+                  }
+                u.submit_value(force, q);
+                u.submit_gradient(flux, q);
+              }
+            u.integrate(EvaluationFlags::values | EvaluationFlags::gradients);
+            const auto residual = [&](const unsigned int i) {
+              const auto [c, b] = fe_velocity.system_to_component_index(i);
+              return -u.begin_dof_values()[c * n_scalar + h2l[b]][lane];
+            };
+
+            if (has_rigid)
+              {
+                node_values.reinit(cell);
+                for (unsigned int i = 0; i < u_dofs.size(); ++i)
+                  {
+                    const auto node = rigid_dof_grain.find(u_dofs[i]);
+                    const auto hanging =
+                      hanging_rigid ? hanging_rigid_parents.find(u_dofs[i]) :
+                                      hanging_rigid_parents.end();
+                    if (node == rigid_dof_grain.end() &&
+                        hanging == hanging_rigid_parents.end())
+                      continue;
+                    const auto [c, base] =
+                      fe_velocity.system_to_component_index(i);
+                    const double r = residual(i);
+                    // The node by its first component's DoF.
+                    const types::global_dof_index node_key =
+                      u_dofs[fe_velocity.component_to_system_index(0, base)];
+                    const auto add = [&](const int grain, const double w) {
+                      node_reactions.add(grain,
+                                         node_key,
+                                         node_values.quadrature_point(i),
+                                         c,
+                                         w * r);
+                    };
+                    if (node != rigid_dof_grain.end())
+                      {
+                        add(node->second, 1.);
+                        if (data.has_traction &&
+                            partitioner_u.in_local_range(u_dofs[i]))
+                          owned_rigid_nodes.emplace(
+                            u_dofs[i],
+                            std::make_pair(c,
+                                           node_values.quadrature_point(i)));
+                      }
+                    if (hanging != hanging_rigid_parents.end())
+                      for (const auto &[parent, weight] : hanging->second)
+                        add(rigid_dof_grain.at(parent), weight);
+                  }
+              }
+            if (on_wall)
+              {
+                for (unsigned int i = 0; i < u_dofs.size(); ++i)
+                  if (on_face[i])
+                    boundary_force[fe_velocity.system_to_component_index(i)
+                                     .first] += residual(i);
+                // The pressure faces' -p_b (v . n) in those rows' F.
+                for (const auto f : cell->face_indices())
+                  if (cell->face(f)->at_boundary() &&
+                      boundary_conditions.face(cell->face(f)->boundary_id())
+                          .type == BoundaryConditions<dim>::Type::pressure)
+                    {
+                      const double p_b =
+                        boundary_conditions
+                          .face(cell->face(f)->boundary_id())
+                          .pressure;
+                      face_values.reinit(cell, f);
+                      face_term = 0;
+                      add_pressure_face_term(face_values, p_b, face_term);
+                      for (unsigned int i = 0; i < u_dofs.size(); ++i)
+                        if (on_face[i])
+                          boundary_force
+                            [fe_velocity.system_to_component_index(i)
+                               .first] += face_term(i);
+                    }
+              }
+          }
+      node_reactions.move_to(rigid_reactions);
+      // The traction faces' term acts on rows, not cells: the rigid
+      // nodes' share once per owned node, at the node.
+      if (data.has_traction)
+        for (const auto &[i, node] : owned_rigid_nodes)
+          {
+            const double r =
+              traction_force.local_element(partitioner_u.global_to_local(i));
+            if (r != 0)
+              {
+                Tensor<1, dim> f;
+                f[node.first] = -r;
+                rigid_reactions.emplace_back(rigid_dof_grain.at(i),
+                                             node.second,
+                                             f);
+              }
+          }
+      boundary_force += pressure_face_force();
+      last_boundary_force =
+        Utilities::MPI::sum(boundary_force, mpi_communicator);
+    }
+
+
+    template void
+    PenalizedNavierStokes<2>::compute_matrix_free_reactions(const unsigned int);
+    template void
+    PenalizedNavierStokes<3>::compute_matrix_free_reactions(const unsigned int);
+  } // namespace fluid
+} // namespace softsand
