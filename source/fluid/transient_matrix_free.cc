@@ -124,17 +124,13 @@ namespace softsand
           data.velocity_flags[partitioner_u.global_to_local(i)] |= 2;
 
       // The history on the kernels' layout.
-      const auto copy_velocity = [&](const BlockVector &from,
-                                     VectorType        &to) {
-        matrix_free.initialize_dof_vector(to, 0);
-        for (unsigned int i = 0; i < owned_u; ++i)
-          to.local_element(i) =
-            from.block(0)(partitioner_u.local_to_global(i));
-        to.update_ghost_values();
-      };
-      copy_velocity(old_solution, data.old_velocity);
+      data.copy_to_kernel_layout(old_solution, 0, data.old_velocity);
+      data.old_velocity.update_ghost_values();
       if (order == 2)
-        copy_velocity(older_solution, data.older_velocity);
+        {
+          data.copy_to_kernel_layout(older_solution, 0, data.older_velocity);
+          data.older_velocity.update_ghost_values();
+        }
       else
         data.older_velocity.reinit(0);
 

@@ -32,9 +32,6 @@ namespace softsand
       TransientMatrixFree           &data        = *transient_matrix_free;
       const MatrixFree<dim, double> &matrix_free = *data.matrix_free;
       const auto &partitioner_u = *matrix_free.get_vector_partitioner(0);
-      const auto &partitioner_p = *matrix_free.get_vector_partitioner(1);
-      const unsigned int owned_u   = partitioner_u.locally_owned_size();
-      const unsigned int owned_p   = partitioner_p.locally_owned_size();
       const unsigned int n_batches = matrix_free.n_cell_batches();
       const bool penalized = solid_field != nullptr && !rigid_nodes();
       constexpr unsigned int n_q = Utilities::pow(3, dim);
@@ -49,14 +46,8 @@ namespace softsand
       node_reactions.reserve(rigid_dof_grain.size() / dim +
                              hanging_rigid_parents.size());
       VectorType u_full, p_full;
-      matrix_free.initialize_dof_vector(u_full, 0);
-      matrix_free.initialize_dof_vector(p_full, 1);
-      for (unsigned int i = 0; i < owned_u; ++i)
-        u_full.local_element(i) =
-          solution.block(0)(partitioner_u.local_to_global(i));
-      for (unsigned int i = 0; i < owned_p; ++i)
-        p_full.local_element(i) =
-          solution.block(1)(partitioner_p.local_to_global(i));
+      data.copy_to_kernel_layout(solution, 0, u_full);
+      data.copy_to_kernel_layout(solution, 1, p_full);
       u_full.update_ghost_values();
       p_full.update_ghost_values();
       VectorType traction_force;

@@ -156,23 +156,15 @@ namespace softsand
       const unsigned int owned_u = partitioner_u.locally_owned_size();
       const unsigned int owned_p = partitioner_p.locally_owned_size();
       BlockVectorType &rhs = data.rhs, &lifting = data.lifting;
-      BlockVectorType  delta;
-      delta.reinit(2);
-      matrix_free.initialize_dof_vector(delta.block(0), 0);
-      matrix_free.initialize_dof_vector(delta.block(1), 1);
-      delta.collect_sizes();
       TimerOutput::Scope t(timer, "fluid: solve");
       // Start from the previous state (correction form, zero on every
       // constrained row).
-      {
-        for (unsigned int i = 0; i < owned_u; ++i)
-          delta.block(0).local_element(i) =
-            solution.block(0)(partitioner_u.local_to_global(i));
-        for (unsigned int i = 0; i < owned_p; ++i)
-          delta.block(1).local_element(i) =
-            solution.block(1)(partitioner_p.local_to_global(i));
-        data.stokes.zero_constrained_rows(delta);
-      }
+      BlockVectorType delta;
+      delta.reinit(2);
+      data.copy_to_kernel_layout(solution, 0, delta.block(0));
+      data.copy_to_kernel_layout(solution, 1, delta.block(1));
+      delta.collect_sizes();
+      data.stokes.zero_constrained_rows(delta);
       const double  rhs_norm = rhs.l2_norm();
       SolverControl control(
         solver_parameters.max_linear_iterations,

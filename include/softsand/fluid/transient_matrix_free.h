@@ -13,6 +13,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/la_parallel_block_vector.h>
 #include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_parallel_block_vector.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
@@ -145,6 +146,20 @@ namespace softsand
       Tensor<1, dim> body_force_value;
       /// The BDF right-hand side of this step, by point.
       internal::StepRightHandSide<dim> right_hand_side;
+
+      /// @p to = block @p block (0 velocity, 1 pressure) of @p from, the
+      /// locally owned entries, on the kernels' layout (no ghost values).
+      void
+      copy_to_kernel_layout(const TrilinosWrappers::MPI::BlockVector &from,
+                            const unsigned int                        block,
+                            VectorType                               &to) const
+      {
+        matrix_free->initialize_dof_vector(to, block);
+        const Utilities::MPI::Partitioner &partitioner =
+          *matrix_free->get_vector_partitioner(block);
+        for (unsigned int i = 0; i < partitioner.locally_owned_size(); ++i)
+          to.local_element(i) = from.block(block)(partitioner.local_to_global(i));
+      }
     };
   } // namespace fluid
 } // namespace softsand
