@@ -43,25 +43,6 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 SOLVERS = {'old': 'matrix based', 'new': 'matrix free'}
 
 
-def largest_grain_force(directory):
-    """The largest |F| in <directory>/grain_forces.txt (0 if absent)."""
-    path = os.path.join(directory, 'grain_forces.txt')
-    if not os.path.exists(path):
-        return 0.
-    largest, columns = 0., None
-    for line in open(path):
-        parts = line.split()
-        if line.startswith('#'):
-            columns = [parts[1:].index(c) for c in ('fx', 'fy', 'fz')
-                       if c in parts[1:]]
-            continue
-        if not parts or not columns:
-            continue
-        f = [float(parts[c]) for c in columns]
-        largest = max(largest, sum(v * v for v in f) ** 0.5)
-    return largest
-
-
 def grain_forces(directory):
     """{grain: (fx, fy, fz)} from <directory>/grain_forces.txt ({} if
     absent)."""
@@ -80,9 +61,12 @@ def grain_forces(directory):
     return forces
 
 
+def norm(f):
+    return sum(v * v for v in f) ** 0.5
+
+
 def largest_force_difference(forces, reference):
     """max over grains |F - F_ref|, relative to max |F_ref|."""
-    norm = lambda f: sum(v * v for v in f) ** 0.5
     common = [g for g in reference if g in forces]
     largest = max([norm(reference[g]) for g in common] or [0.])
     if largest == 0.:
@@ -143,6 +127,7 @@ def run(a, label, repeat):
     timers = prm_tools.timer_sections(proc.stdout)
     n = len(rows)
     flow = rows[-1].get('radial_flow_rate', rows[-1].get('flow_rate', 0.))
+    forces = grain_forces(outdir)
     return {
         'name': name, 'wall': wall, 'steps': n, 'dofs': int(rows[-1]['dofs']),
         'step_median': statistics.median(steps) if steps else walls[0],
@@ -151,8 +136,8 @@ def run(a, label, repeat):
         'peak_MB': max(peaks or [0]) / 1024.,
         'bytes_per_dof': sum(peaks) * 1024. / int(rows[-1]['dofs']),
         'timers': {k: v[1] / n for k, v in timers.items() if k != 'total'},
-        'flow': flow, 'force': largest_grain_force(outdir),
-        'forces': grain_forces(outdir)}
+        'flow': flow, 'force': max([norm(f) for f in forces.values()] or [0.]),
+        'forces': forces}
 
 
 def main():
