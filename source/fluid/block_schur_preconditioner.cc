@@ -1,6 +1,7 @@
 #include <softsand/fluid/block_schur_preconditioner.h>
 
 #include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/trilinos_index_access.h>
 
 #include <EpetraExt_MatrixMatrix.h>
 #include <Epetra_MultiVector.h>
@@ -123,6 +124,124 @@ namespace softsand
         }
       x.reinit(*sum);
       delete sum;
+      make_pressure_diagonal_regular(x);
+    }
+
+
+    namespace
+    {
+      /// The local column indices of @p from as local columns of @p into
+      /// (whose pattern holds @p from's), -1 for a column of @p from's
+      /// column map that none of its entries uses (deal.II's maps can hold
+      /// every relevant column).
+      std::vector<int>
+      columns_in(const Epetra_CrsMatrix &from, const Epetra_CrsMatrix &into)
+      {
+        std::vector<int> columns(from.ColMap().NumMyElements());
+        for (unsigned int l = 0; l < columns.size(); ++l)
+          columns[l] =
+            into.ColMap().LID(TrilinosWrappers::global_column_index(from, l));
+        return columns;
+      }
+
+
+      /// Add @p factor times the entries of @p from to @p into, whose
+      /// pattern holds @p from's, through @p columns (columns_in()).
+      void
+      add_in_pattern(const Epetra_CrsMatrix &from,
+                     const double            factor,
+                     const std::vector<int> &columns,
+                     Epetra_CrsMatrix       &into)
+      {
+        std::vector<double> values;
+        std::vector<int>    into_columns;
+        for (int row = 0; row < from.NumMyRows(); ++row)
+          {
+            int     n_entries;
+            double *from_values;
+            int    *from_columns;
+            from.ExtractMyRowView(row, n_entries, from_values, from_columns);
+            values.resize(n_entries);
+            into_columns.resize(n_entries);
+            for (int e = 0; e < n_entries; ++e)
+              {
+                values[e]       = factor * from_values[e];
+                into_columns[e] = columns[from_columns[e]];
+              }
+            const int ierr = into.SumIntoMyValues(
+              into.RowMap().LID(TrilinosWrappers::global_row_index(from, row)),
+              n_entries,
+              values.data(),
+              into_columns.data());
+            AssertThrow(ierr == 0,
+                        ExcMessage("B D^-1 B^T or the pressure block has an "
+                                   "entry outside the pressure matrix's "
+                                   "pattern."));
+          }
+      }
+    } // namespace
+
+
+    bool
+    DiscreteBrinkmanProduct::initialized() const
+    {
+      return product.m() > 0;
+    }
+
+
+    void
+    DiscreteBrinkmanProduct::initialize(
+      const TrilinosWrappers::SparseMatrix &divergence,
+      const TrilinosWrappers::SparseMatrix &gradient,
+      const TrilinosWrappers::SparseMatrix *c,
+      TrilinosWrappers::SparseMatrix       &x)
+    {
+      divergence.mmult(product, gradient);
+      discrete_brinkman_from_product(product, c, x);
+      // EpetraExt's product into a filled matrix fails (an assertion in
+      // Epetra's map comparison) where a rank owns no row: such meshes
+      // form X anew at every step.
+      every_rank_has_rows =
+        Utilities::MPI::min(product.trilinos_matrix().NumMyRows() > 0 ? 1 : 0,
+                            x.get_mpi_communicator()) == 1;
+      product_columns =
+        columns_in(product.trilinos_matrix(), x.trilinos_matrix());
+      if (c != nullptr)
+        c_columns = columns_in(c->trilinos_matrix(), x.trilinos_matrix());
+    }
+
+
+    void
+    DiscreteBrinkmanProduct::refresh(
+      const TrilinosWrappers::SparseMatrix &divergence,
+      const TrilinosWrappers::SparseMatrix &gradient,
+      const TrilinosWrappers::SparseMatrix *c,
+      TrilinosWrappers::SparseMatrix       &x)
+    {
+      if (!every_rank_has_rows)
+        {
+          initialize(divergence, gradient, c, x);
+          return;
+        }
+      // deal.II hands out the Epetra matrices read-only; their values are
+      // ours. The product must keep exactly its first pattern: EpetraExt
+      // rewrites the column indices too.
+      Epetra_CrsMatrix &p =
+        const_cast<Epetra_CrsMatrix &>(product.trilinos_matrix());
+      const int ierr =
+        EpetraExt::MatrixMatrix::Multiply(divergence.trilinos_matrix(),
+                                          false,
+                                          gradient.trilinos_matrix(),
+                                          false,
+                                          p);
+      AssertThrow(ierr == 0,
+                  ExcMessage("EpetraExt could not form B D^-1 B^T again."));
+      Epetra_CrsMatrix &matrix =
+        const_cast<Epetra_CrsMatrix &>(x.trilinos_matrix());
+      matrix.PutScalar(0.);
+      add_in_pattern(p, 1., product_columns, matrix);
+      if (c != nullptr)
+        add_in_pattern(c->trilinos_matrix(), -1., c_columns, matrix);
       make_pressure_diagonal_regular(x);
     }
 

@@ -319,6 +319,19 @@ namespace softsand
               }
           data.gradient.compress(VectorOperation::add);
           data.divergence.compress(VectorOperation::add);
+          const Epetra_CrsMatrix &gradient = data.gradient.trilinos_matrix();
+          data.gradient_values.clear();
+          data.gradient_values.reserve(gradient.NumMyNonzeros());
+          for (int row = 0; row < gradient.NumMyRows(); ++row)
+            {
+              int     n_entries;
+              double *values;
+              int    *columns;
+              gradient.ExtractMyRowView(row, n_entries, values, columns);
+              data.gradient_values.insert(data.gradient_values.end(),
+                                          values,
+                                          values + n_entries);
+            }
         }
 
       // A body force without x, y, z or t is evaluated once.

@@ -8,6 +8,7 @@
 
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_index_access.h>
 #include <deal.II/lac/vector_memory.h>
 
 #include <softsand/fluid/block_schur_preconditioner.h>
@@ -76,19 +77,33 @@ namespace softsand
               }
           }
       data.inverse_diagonal.compress(VectorOperation::add);
-      // X takes 1 / D of every node that is not imposed.
-      TrilinosWrappers::MPI::Vector weights(owned_partitioning[0],
-                                            mpi_communicator);
-      for (unsigned int i = 0; i < owned_u; ++i)
-        {
-          const double d = data.inverse_diagonal.local_element(i);
-          weights(partitioner_u.local_to_global(i)) =
-            ((data.velocity_flags[i] & 1) || !(std::abs(d) > 0)) ? 0. :
-                                                                    1. / d;
-        }
-      for (const auto i : data.step_velocity)
-        weights(partitioner_u.local_to_global(i)) = 0.;
-      weights.compress(VectorOperation::insert);
+      // X takes 1 / D of every node that is not imposed: B^T's rows are
+      // scaled in place from its values as assembled.
+      {
+        std::vector<bool> step_row(owned_u, false);
+        for (const auto i : data.step_velocity)
+          step_row[i] = true;
+        Epetra_CrsMatrix &gradient =
+          const_cast<Epetra_CrsMatrix &>(data.gradient.trilinos_matrix());
+        std::size_t k = 0;
+        for (int row = 0; row < gradient.NumMyRows(); ++row)
+          {
+            const unsigned int i = partitioner_u.global_to_local(
+              TrilinosWrappers::global_row_index(gradient, row));
+            const double d = data.inverse_diagonal.local_element(i);
+            const double weight =
+              (step_row[i] || (data.velocity_flags[i] & 1) ||
+               !(std::abs(d) > 0)) ?
+                0. :
+                1. / d;
+            int     n_entries;
+            double *values;
+            int    *columns;
+            gradient.ExtractMyRowView(row, n_entries, values, columns);
+            for (int e = 0; e < n_entries; ++e, ++k)
+              values[e] = weight * data.gradient_values[k];
+          }
+      }
       {
         std::vector<bool> unit(owned_u, false);
         for (const auto &line : data.velocity_constraints.get_lines())
@@ -119,13 +134,18 @@ namespace softsand
       {
           data.schur_time_step = dt;
           data.schur_order     = order;
-          TrilinosWrappers::SparseMatrix product;
-          data.divergence.mmult(product, data.gradient, weights);
-          discrete_brinkman_from_product(product,
-                                         data.has_smoothing ?
-                                           &data.smoothing :
-                                           nullptr,
-                                         data.schur);
+          const TrilinosWrappers::SparseMatrix *smoothing =
+            data.has_smoothing ? &data.smoothing : nullptr;
+          if (!data.schur_product.initialized())
+            data.schur_product.initialize(data.divergence,
+                                          data.gradient,
+                                          smoothing,
+                                          data.schur);
+          else
+            data.schur_product.refresh(data.divergence,
+                                       data.gradient,
+                                       smoothing,
+                                       data.schur);
           TrilinosWrappers::PreconditionAMG::AdditionalData amg;
           amg.elliptic              = true;
           amg.higher_order_elements = false;

@@ -122,12 +122,22 @@ namespace softsand
               continue;
             const bool connected =
               pores == nullptr || pores->connected(cell->active_cell_index());
+            // Between the rings only the flux is summed: the pressure and
+            // the solid fraction (the grains' lookup, most of this pass)
+            // are needed only in cells a ring crosses.
+            bool on_ring = false;
+            for (const double radius : radii)
+              on_ring = on_ring || std::abs(rc - radius) <=
+                                     half_width + half_diagonal;
             fe_values.reinit(cell);
-            fe_values[pressure].get_function_values(solution, p);
             fe_values[velocities].get_function_values(solution, u);
-            if (solids != nullptr)
-              solids->evaluate(
-                *cell, fe_values.get_quadrature_points(), vf, u_s, index);
+            if (on_ring)
+              {
+                fe_values[pressure].get_function_values(solution, p);
+                if (solids != nullptr)
+                  solids->evaluate(
+                    *cell, fe_values.get_quadrature_points(), vf, u_s, index);
+              }
             for (unsigned int q = 0; q < n_q; ++q)
               {
                 const Point<dim> &x = fe_values.quadrature_point(q);

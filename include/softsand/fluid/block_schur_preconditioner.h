@@ -35,6 +35,43 @@ namespace softsand
                                    TrilinosWrappers::SparseMatrix       &x);
 
     /**
+     * X = B G - C of discrete_brinkman_from_product() (G = D^-1 B^T), formed
+     * again at every step on the patterns of the mesh's first: EpetraExt's
+     * product into a matrix of the product's own pattern builds no graph,
+     * and X's values are summed through column maps kept per mesh (the
+     * general product's new graph and copies were most of the transient
+     * step's preconditioner set-up).
+     */
+    class DiscreteBrinkmanProduct
+    {
+    public:
+      /// Whether initialize() has given the patterns.
+      bool
+      initialized() const;
+
+      /// The mesh's first X (its pattern, and the product's).
+      void
+      initialize(const TrilinosWrappers::SparseMatrix &divergence,
+                 const TrilinosWrappers::SparseMatrix &gradient,
+                 const TrilinosWrappers::SparseMatrix *c,
+                 TrilinosWrappers::SparseMatrix       &x);
+
+      /// X's values again, for matrices of the patterns initialize() saw.
+      void
+      refresh(const TrilinosWrappers::SparseMatrix &divergence,
+              const TrilinosWrappers::SparseMatrix &gradient,
+              const TrilinosWrappers::SparseMatrix *c,
+              TrilinosWrappers::SparseMatrix       &x);
+
+    private:
+      TrilinosWrappers::SparseMatrix product;
+      /// The product's and C's local columns as X's.
+      std::vector<int> product_columns, c_columns;
+      /// False where some rank owns no row (refresh() forms X anew).
+      bool every_rank_has_rows = true;
+    };
+
+    /**
      * Block upper-triangular preconditioner for the saddle-point system
      * [A B^T; B 0] of the penalized Navier-Stokes equations, applied inside
      * FGMRES: one AMG V-cycle for the velocity block A and, for the Schur

@@ -20,6 +20,7 @@
 #include <deal.II/matrix_free/matrix_free.h>
 
 #include <softsand/fluid/bdf_coefficients.h>
+#include <softsand/fluid/block_schur_preconditioner.h>
 #include <softsand/fluid/matrix_free_operators.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 
@@ -123,10 +124,16 @@ namespace softsand
       std::vector<unsigned char> velocity_flags;
       std::vector<unsigned int>  step_velocity, step_pressure;
       VectorType                 inverse_diagonal;
-      /// B^T and B with the mesh's constraints (per mesh), and the pressure
-      /// matrix X = B D^-1 B^T + C of the step.
+      /// B^T and B with the mesh's constraints (per mesh; the step scales
+      /// B^T's rows by D^-1 in place), and the pressure matrix
+      /// X = B D^-1 B^T + C of the step, whose pattern is kept per mesh.
       TrilinosWrappers::SparseMatrix gradient, divergence, schur,
         schur_of_amg;
+      /// B^T's values as assembled, in the order of its local rows, in
+      /// single precision (X is a preconditioner's; this halves the copy).
+      std::vector<float> gradient_values;
+      /// Forms X's values per step on the patterns of the mesh's first.
+      DiscreteBrinkmanProduct schur_product;
       /// The step length and BDF order X's AMG was built for, the mean
       /// CG iterations on X of that step and of the last one.
       double       schur_time_step            = 0;
