@@ -98,6 +98,41 @@ namespace softsand
 
 
     template <int dim>
+    double
+    PenalizedNavierStokes<dim>::relative_target_divergence(
+      const FEValues<dim>                        &fe_values,
+      const std::vector<types::global_dof_index> &dof_indices,
+      const std::vector<unsigned int>            &component,
+      const double                                h) const
+    {
+      double divergence = 0, largest = 0, volume = 0;
+      const unsigned int n_q = fe_values.n_quadrature_points;
+      for (unsigned int q = 0; q < n_q; ++q)
+        volume += fe_values.JxW(q);
+      for (unsigned int k = 0; k < dof_indices.size(); ++k)
+        if (component[k] < dim)
+          {
+            const auto target = limit_target.find(dof_indices[k]);
+            if (target == limit_target.end())
+              continue;
+            largest = std::max(largest, std::abs(target->second));
+            // Taylor-Hood is primitive: phi_k has the one component c(k).
+            double integral = 0;
+            for (unsigned int q = 0; q < n_q; ++q)
+              integral +=
+                fe_values.shape_grad(k, q)[component[k]] * fe_values.JxW(q);
+            divergence += target->second * integral;
+          }
+      // Below the cell's viscous velocity mu / (rho h) the targets are at
+      // rest: a pack settled to 1e-10 m/s must not count as squeezing.
+      const double scale = std::max(largest,
+                                    fluid_parameters.viscosity /
+                                      (fluid_parameters.density * h));
+      return std::abs(divergence) * h / (volume * scale);
+    }
+
+
+    template <int dim>
     void
     PenalizedNavierStokes<dim>::assemble(const Assembly      kind,
                                          const double        dt,
@@ -323,6 +358,17 @@ namespace softsand
                     }
                 std::tie(free_fraction, solid_smoothing) =
                   rigid_cell_weights(n_velocity, n_rigid, n_fixed, h);
+                // Penalization limit: where the blended targets squeeze
+                // or part the fluid, the constraints contradict
+                // continuity; relax it there (FluidParameters).
+                if (solid_smoothing > 0 && !limit_target.empty() &&
+                    fluid_parameters.squeeze_relaxation > 0)
+                  solid_smoothing *=
+                    1. + fluid_parameters.squeeze_relaxation *
+                           relative_target_divergence(fe_values,
+                                                      dof_indices,
+                                                      component,
+                                                      h);
               }
 
             for (unsigned int q = 0; q < n_q; ++q)

@@ -171,6 +171,7 @@ namespace softsand
                                        constraints);
       rigid_dof_grain.clear();
       rigid_dof_shares.clear();
+      limit_target.clear();
       hanging_rigid_parents.clear();
       if (with_solids &&
           (rigid_nodes() || constrained_interiors() || penalization_limit()))
@@ -282,6 +283,7 @@ namespace softsand
             constraints.add_line(i);
             constraints.set_inhomogeneity(i, value);
             rigid_dof_grain[i] = node.grain_shares.front().first;
+            limit_target[i]    = node.target;
             if (node.grain_shares.size() > 1)
               rigid_dof_shares[i] = node.grain_shares;
           }

@@ -40,6 +40,11 @@ namespace softsand
       /// modes no free velocity sees stay smooth (dimensionless; 0: pin
       /// the pressure of wholly imposed cells instead).
       double rigid_node_pressure_smoothing = 1e-4;
+      /// Penalization limit: the smoothing of a cell grows by 1 + this
+      /// factor times the relative divergence of its nodes' blended
+      /// targets (two solids approaching, parting or turning against each
+      /// other; zero for one rigid motion and for solids at rest).
+      double squeeze_relaxation = 100;
       /// Penalization: constrain the velocity nodes of cells wholly inside
       /// a grain (the Theta -> infinity limit there), penalize cut cells.
       bool constrain_grain_interiors = true;

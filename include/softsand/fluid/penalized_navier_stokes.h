@@ -501,6 +501,16 @@ namespace softsand
             0.;
         return {free_fraction, smoothing};
       }
+      /// Penalization limit: |int_K div t| h / (|K| U) of the blended
+      /// targets t of the cell's constrained velocity nodes, U the larger
+      /// of max_k |t_k| and mu / (rho h) (0 for one rigid translation or
+      /// rotation; about 0 for solids at rest).
+      double
+      relative_target_divergence(
+        const FEValues<dim>                        &fe_values,
+        const std::vector<types::global_dof_index> &dof_indices,
+        const std::vector<unsigned int>            &component,
+        const double                                h) const;
       /// Whether velocity dof @p i is imposed: rigid, Dirichlet, or hanging
       /// on rigid parents only (make_constraints() must have run).
       bool
@@ -666,6 +676,8 @@ namespace softsand
       std::unordered_map<types::global_dof_index,
                          std::vector<std::pair<int, double>>>
         rigid_dof_shares;
+      /// Penalization limit: each constrained node's blended target t_k.
+      std::unordered_map<types::global_dof_index, double> limit_target;
       std::map<types::global_dof_index,
                std::vector<std::pair<types::global_dof_index, double>>>
         hanging_rigid_parents;
