@@ -105,23 +105,67 @@ namespace softsand
       const std::vector<unsigned int>            &component,
       const double                                h) const
     {
-      double divergence = 0, largest = 0, volume = 0;
+      // The cell's target field: a node's blended target; a hanging node's
+      // parents' targets by their weights; a wall node its imposed value.
+      // Nodes without one (free, or the free share of a hanging node) take
+      // the cell's mean target, so that one grain translating past free
+      // fluid or a refinement boundary is no squeeze.
+      const unsigned int n = dof_indices.size();
+      std::vector<double> value(n, 0.);
+      std::vector<double> free_share(n, 0.);
+      Tensor<1, dim>      sum;
+      std::array<unsigned int, dim> count{};
+      double largest = 0;
+      for (unsigned int k = 0; k < n; ++k)
+        if (component[k] < dim)
+          {
+            const auto i      = dof_indices[k];
+            const auto target = limit_target.find(i);
+            if (target != limit_target.end())
+              {
+                value[k] = target->second;
+                sum[component[k]] += target->second;
+                ++count[component[k]];
+                largest = std::max(largest, std::abs(target->second));
+                continue;
+              }
+            const auto hanging = hanging_rigid_parents.find(i);
+            if (hanging != hanging_rigid_parents.end())
+              {
+                double weights = 0;
+                for (const auto &[parent, weight] : hanging->second)
+                  {
+                    const auto t = limit_target.find(parent);
+                    if (t == limit_target.end())
+                      continue;
+                    value[k] += weight * t->second;
+                    weights += weight;
+                  }
+                free_share[k] = 1. - weights;
+              }
+            else if (const auto *entries = constraints.get_constraint_entries(i);
+                     entries != nullptr && entries->empty())
+              value[k] = constraints.get_inhomogeneity(i);
+            else
+              free_share[k] = 1.;
+          }
+      double divergence = 0, volume = 0;
       const unsigned int n_q = fe_values.n_quadrature_points;
       for (unsigned int q = 0; q < n_q; ++q)
         volume += fe_values.JxW(q);
-      for (unsigned int k = 0; k < dof_indices.size(); ++k)
+      for (unsigned int k = 0; k < n; ++k)
         if (component[k] < dim)
           {
-            const auto target = limit_target.find(dof_indices[k]);
-            if (target == limit_target.end())
+            const unsigned int c = component[k];
+            const double t =
+              value[k] + free_share[k] * (count[c] > 0 ? sum[c] / count[c] : 0.);
+            if (t == 0)
               continue;
-            largest = std::max(largest, std::abs(target->second));
             // Taylor-Hood is primitive: phi_k has the one component c(k).
             double integral = 0;
             for (unsigned int q = 0; q < n_q; ++q)
-              integral +=
-                fe_values.shape_grad(k, q)[component[k]] * fe_values.JxW(q);
-            divergence += target->second * integral;
+              integral += fe_values.shape_grad(k, q)[c] * fe_values.JxW(q);
+            divergence += t * integral;
           }
       // Below the cell's viscous velocity mu / (rho h) the targets are at
       // rest: a pack settled to 1e-10 m/s must not count as squeezing.

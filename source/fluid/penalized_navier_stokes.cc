@@ -92,25 +92,17 @@ namespace softsand
         , dof_handler_velocity(tria)
         , dof_handler_pressure(tria)
     {
-      // The matrix-free operators know rigid nodes and the penalty, not the
-      // blended constraints of the penalization limit.
+      // The steady matrix-free operators know rigid nodes and the penalty,
+      // not the blended constraints of the penalization limit (the
+      // transient one takes them as it takes rigid nodes).
       if (fluid_parameters.solid_model ==
-          FluidParameters::SolidModel::penalization_limit)
-        {
-          if (solver_parameters.transient_solver ==
-              SolverParameters::LinearSolver::matrix_free &&
-              !solver_parameters.transient_solver_automatic)
-            base::throw_invalid_parameter(
-              "fluid solver/transient solver",
-              "matrix free",
-              "fluid/solid model = penalization limit needs 'matrix based'");
-          if (solver_parameters.linear_solver ==
-              SolverParameters::LinearSolver::matrix_free)
-            base::throw_invalid_parameter(
-              "fluid solver/linear solver",
-              "matrix free",
-              "fluid/solid model = penalization limit needs 'matrix based'");
-        }
+            FluidParameters::SolidModel::penalization_limit &&
+          solver_parameters.linear_solver ==
+            SolverParameters::LinearSolver::matrix_free)
+        base::throw_invalid_parameter(
+          "fluid solver/linear solver",
+          "matrix free",
+          "fluid/solid model = penalization limit needs 'matrix based'");
       body_force = std::make_unique<FunctionParser<dim>>(dim);
       std::string expr = fluid_parameters.body_force;
       // Accept a 3-component default in 2D by dropping the z component.

@@ -240,9 +240,13 @@ namespace softsand
       const auto *entries = constraints.get_constraint_entries(i);
       if (entries == nullptr)
         return false;
+      // close() resolves constrained parents away: a hanging node on
+      // rigid parents only is then an empty line. Before, compare counts.
+      if (entries->empty() || constraints.is_closed())
+        return entries->empty();
       const auto hanging = hanging_rigid_parents.find(i);
-      return entries->empty() || (hanging != hanging_rigid_parents.end() &&
-                                  hanging->second.size() == entries->size());
+      return hanging != hanging_rigid_parents.end() &&
+             hanging->second.size() == entries->size();
     }
 
 

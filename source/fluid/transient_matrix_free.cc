@@ -60,7 +60,7 @@ namespace softsand
       const unsigned int             n_batches = matrix_free.n_cell_batches();
       const double rho = fluid_parameters.density;
       const BDFCoefficients bdf = bdf_coefficients(order, bdf_step_ratio);
-      const bool            penalized = solid_field != nullptr && !rigid_nodes();
+      const bool            penalized = solid_field != nullptr && !constrains_solids();
       constexpr unsigned int n_p = LocalTensors<dim>::n_p;
       constexpr unsigned int n_q = Utilities::pow(3, dim);
       auto &right_hand_side          = data.right_hand_side;
@@ -122,6 +122,9 @@ namespace softsand
       for (const auto &[i, grain] : rigid_dof_grain)
         if (partitioner_u.in_local_range(i) || partitioner_u.is_ghost_entry(i))
           data.velocity_flags[partitioner_u.global_to_local(i)] |= 2;
+      for (const auto &[i, parents] : hanging_rigid_parents)
+        if (partitioner_u.in_local_range(i) || partitioner_u.is_ghost_entry(i))
+          data.velocity_flags[partitioner_u.global_to_local(i)] |= 4;
 
       // The history on the kernels' layout.
       data.copy_to_kernel_layout(old_solution, 0, data.old_velocity);
@@ -337,6 +340,21 @@ namespace softsand
       if (data.has_smoothing)
         {
           data.smoothing = 0;
+          // The penalization limit's squeeze relaxation, as assemble().
+          const bool squeeze = !limit_target.empty() &&
+                               fluid_parameters.squeeze_relaxation > 0;
+          std::unique_ptr<FEValues<dim>> squeeze_values;
+          std::vector<unsigned int>      component(u_dofs.size());
+          if (squeeze)
+            {
+              squeeze_values = std::make_unique<FEValues<dim>>(
+                data.mapping,
+                fe_velocity,
+                QGauss<dim>(fe_velocity.degree + 1),
+                update_gradients | update_JxW_values);
+              for (unsigned int k = 0; k < component.size(); ++k)
+                component[k] = fe_velocity.system_to_component_index(k).first;
+            }
           FullMatrix<double> local(n_p, n_p);
           Vector<double>     local_rhs(n_p);
           for (unsigned int batch = 0; batch < n_batches; ++batch)
@@ -357,11 +375,18 @@ namespace softsand
                 if (n_rigid == 0)
                   continue;
                 const double h = cell->diameter() / std::sqrt(double(dim));
-                const double weight =
+                double weight =
                   rigid_cell_weights(u_dofs.size(), n_rigid, n_fixed, h)
                     .second;
                 if (weight == 0)
                   continue;
+                if (squeeze)
+                  {
+                    squeeze_values->reinit(cell);
+                    weight *= 1. + fluid_parameters.squeeze_relaxation *
+                                     relative_target_divergence(
+                                       *squeeze_values, u_dofs, component, h);
+                  }
                 tensor_computer.compute(cell, local_tensors);
                 for (unsigned int a = 0; a < n_p; ++a)
                   for (unsigned int b = 0; b < n_p; ++b)

@@ -33,7 +33,7 @@ namespace softsand
       const MatrixFree<dim, double> &matrix_free = *data.matrix_free;
       const auto &partitioner_u = *matrix_free.get_vector_partitioner(0);
       const unsigned int n_batches = matrix_free.n_cell_batches();
-      const bool penalized = solid_field != nullptr && !rigid_nodes();
+      const bool penalized = solid_field != nullptr && !constrains_solids();
       constexpr unsigned int n_q = Utilities::pow(3, dim);
       const auto &right_hand_side = data.right_hand_side;
       // Reactions: F - K u of the rigid nodes' rows (and of the hanging
@@ -95,11 +95,10 @@ namespace softsand
           {
             const auto cell = matrix_free.get_cell_iterator(batch, lane, 0);
             cell->get_dof_indices(u_dofs);
+            // Rigid nodes and hanging nodes on rigid parents (flags 2, 4).
             bool has_rigid = false;
             for (const auto i : u_dofs)
-              if ((data.velocity_flags[partitioner_u.global_to_local(i)] &
-                   2) ||
-                  (hanging_rigid && hanging_rigid_parents.count(i)))
+              if (data.velocity_flags[partitioner_u.global_to_local(i)] & 6)
                 {
                   has_rigid = true;
                   break;
@@ -192,6 +191,10 @@ namespace softsand
                 node_values.reinit(cell);
                 for (unsigned int i = 0; i < u_dofs.size(); ++i)
                   {
+                    const unsigned int local =
+                      partitioner_u.global_to_local(u_dofs[i]);
+                    if (!(data.velocity_flags[local] & 6))
+                      continue;
                     const auto node = rigid_dof_grain.find(u_dofs[i]);
                     const auto hanging =
                       hanging_rigid ? hanging_rigid_parents.find(u_dofs[i]) :
@@ -212,11 +215,24 @@ namespace softsand
                                          c,
                                          w * r);
                     };
+                    // A node whose target blends grains (penalization
+                    // limit) hands each its share of the reaction.
+                    const auto add_node = [&](const types::global_dof_index j,
+                                              const double w) {
+                      const auto shares = rigid_dof_shares.find(j);
+                      if (shares == rigid_dof_shares.end())
+                        add(rigid_dof_grain.at(j), w);
+                      else
+                        for (const auto &[grain, share] : shares->second)
+                          add(grain, w * share);
+                    };
                     if (node != rigid_dof_grain.end())
                       {
-                        add(node->second, 1.);
+                        add_node(u_dofs[i], 1.);
+                        // Only the rows the traction faces reach.
                         if (data.has_traction &&
-                            partitioner_u.in_local_range(u_dofs[i]))
+                            partitioner_u.in_local_range(u_dofs[i]) &&
+                            traction_force.local_element(local) != 0)
                           owned_rigid_nodes.emplace(
                             u_dofs[i],
                             std::make_pair(c,
@@ -224,7 +240,7 @@ namespace softsand
                       }
                     if (hanging != hanging_rigid_parents.end())
                       for (const auto &[parent, weight] : hanging->second)
-                        add(rigid_dof_grain.at(parent), weight);
+                        add_node(parent, weight);
                   }
               }
             if (on_wall)
@@ -266,9 +282,16 @@ namespace softsand
               {
                 Tensor<1, dim> f;
                 f[node.first] = -r;
-                rigid_reactions.emplace_back(rigid_dof_grain.at(i),
-                                             node.second,
-                                             f);
+                const auto shares = rigid_dof_shares.find(i);
+                if (shares == rigid_dof_shares.end())
+                  rigid_reactions.emplace_back(rigid_dof_grain.at(i),
+                                               node.second,
+                                               f);
+                else
+                  for (const auto &[grain, share] : shares->second)
+                    rigid_reactions.emplace_back(grain,
+                                                 node.second,
+                                                 share * f);
               }
           }
       boundary_force += pressure_face_force();

@@ -337,8 +337,10 @@ namespace softsand
         // convergence study its FGMRES stalls at 1.7e-7 relative residual.
         if (solver_parameters.transient_solver_automatic)
           return dim == 3 &&
-                 fluid_parameters.solid_model ==
-                   FluidParameters::SolidModel::rigid_nodes &&
+                 (fluid_parameters.solid_model ==
+                    FluidParameters::SolidModel::rigid_nodes ||
+                  fluid_parameters.solid_model ==
+                    FluidParameters::SolidModel::penalization_limit) &&
                  solver_parameters.grad_div == 0 &&
                  solver_parameters.grad_div_cell_factor == 0;
         return solver_parameters.transient_solver ==

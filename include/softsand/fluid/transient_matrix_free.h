@@ -120,7 +120,8 @@ namespace softsand
       bool                           has_traction = false, has_smoothing = false;
       TrilinosWrappers::PreconditionAMG schur_amg;
       /// Per velocity DoF of the partitioner (owned, then ghosts), this
-      /// step: bit 0 imposed (no free value), bit 1 a rigid node.
+      /// step: bit 0 imposed (no free value), bit 1 a rigid node, bit 2 a
+      /// hanging node on rigid parents.
       std::vector<unsigned char> velocity_flags;
       std::vector<unsigned int>  step_velocity, step_pressure;
       VectorType                 inverse_diagonal;
