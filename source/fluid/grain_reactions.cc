@@ -81,12 +81,13 @@ namespace softsand
           const auto add_node = [&](const unsigned int            k,
                                     const types::global_dof_index i,
                                     const double                  weight) {
-            const auto shares = rigid_dof_shares.find(i);
-            if (shares == rigid_dof_shares.end())
-              add(k, rigid_dof_grain.at(i), weight);
-            else
-              for (const auto &[grain, share] : shares->second)
-                add(k, grain, weight * share);
+            for_each_grain_share(rigid_dof_grain,
+                                 rigid_dof_shares,
+                                 i,
+                                 weight,
+                                 [&](const int grain, const double w) {
+                                   add(k, grain, w);
+                                 });
           };
           for (unsigned int k = 0; k < dofs.size(); ++k)
             {

@@ -219,12 +219,8 @@ namespace softsand
                     // limit) hands each its share of the reaction.
                     const auto add_node = [&](const types::global_dof_index j,
                                               const double w) {
-                      const auto shares = rigid_dof_shares.find(j);
-                      if (shares == rigid_dof_shares.end())
-                        add(rigid_dof_grain.at(j), w);
-                      else
-                        for (const auto &[grain, share] : shares->second)
-                          add(grain, w * share);
+                      for_each_grain_share(
+                        rigid_dof_grain, rigid_dof_shares, j, w, add);
                     };
                     if (node != rigid_dof_grain.end())
                       {
@@ -282,16 +278,16 @@ namespace softsand
               {
                 Tensor<1, dim> f;
                 f[node.first] = -r;
-                const auto shares = rigid_dof_shares.find(i);
-                if (shares == rigid_dof_shares.end())
-                  rigid_reactions.emplace_back(rigid_dof_grain.at(i),
-                                               node.second,
-                                               f);
-                else
-                  for (const auto &[grain, share] : shares->second)
+                for_each_grain_share(
+                  rigid_dof_grain,
+                  rigid_dof_shares,
+                  i,
+                  1.,
+                  [&](const int grain, const double share) {
                     rigid_reactions.emplace_back(grain,
                                                  node.second,
                                                  share * f);
+                  });
               }
           }
       boundary_force += pressure_face_force();

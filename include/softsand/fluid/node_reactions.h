@@ -22,6 +22,27 @@ namespace softsand
   {
     using namespace dealii;
 
+    /// Call @p add(grain, w) for the grain rigid DoF @p i belongs to, with
+    /// w = @p weight; where the node's target blends grains (penalization
+    /// limit, @p shares), once per grain with its share of @p weight.
+    template <typename Add>
+    void
+    for_each_grain_share(
+      const std::unordered_map<types::global_dof_index, int> &grain_of_dof,
+      const std::unordered_map<types::global_dof_index,
+                               std::vector<std::pair<int, double>>> &shares,
+      const types::global_dof_index                                  i,
+      const double                                                   weight,
+      const Add                                                     &add)
+    {
+      const auto blended = shares.find(i);
+      if (blended == shares.end())
+        add(grain_of_dof.at(i), weight);
+      else
+        for (const auto &[grain, share] : blended->second)
+          add(grain, weight * share);
+    }
+
     template <int dim>
     class NodeReactionSum
     {
