@@ -405,14 +405,9 @@ namespace softsand
                 // Penalization limit: where the blended targets squeeze
                 // or part the fluid, the constraints contradict
                 // continuity; relax it there (FluidParameters).
-                if (solid_smoothing > 0 && !limit_target.empty() &&
-                    fluid_parameters.squeeze_relaxation > 0)
+                if (solid_smoothing > 0)
                   solid_smoothing *=
-                    1. + fluid_parameters.squeeze_relaxation *
-                           relative_target_divergence(fe_values,
-                                                      dof_indices,
-                                                      component,
-                                                      h);
+                    squeeze_factor(fe_values, dof_indices, component, h);
               }
 
             for (unsigned int q = 0; q < n_q; ++q)

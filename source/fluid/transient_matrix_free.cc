@@ -341,8 +341,7 @@ namespace softsand
         {
           data.smoothing = 0;
           // The penalization limit's squeeze relaxation, as assemble().
-          const bool squeeze = !limit_target.empty() &&
-                               fluid_parameters.squeeze_relaxation > 0;
+          const bool squeeze = relaxes_squeezes();
           std::unique_ptr<FEValues<dim>> squeeze_values;
           std::vector<unsigned int>      component(u_dofs.size());
           if (squeeze)
@@ -383,9 +382,8 @@ namespace softsand
                 if (squeeze)
                   {
                     squeeze_values->reinit(cell);
-                    weight *= 1. + fluid_parameters.squeeze_relaxation *
-                                     relative_target_divergence(
-                                       *squeeze_values, u_dofs, component, h);
+                    weight *=
+                      squeeze_factor(*squeeze_values, u_dofs, component, h);
                   }
                 tensor_computer.compute(cell, local_tensors);
                 for (unsigned int a = 0; a < n_p; ++a)

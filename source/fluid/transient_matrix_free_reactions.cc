@@ -1,7 +1,7 @@
 // The transient matrix-free step's reactions: the fluid force on each
 // rigid node (and on the walls) from the residual F - K u of its rows,
 // cell by cell with the step's own kernels (no second assembly), summed
-// into one record per grain and node.
+// per row and then into one record per grain and owned node.
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -13,7 +13,8 @@
 #include <softsand/fluid/node_reactions.h>
 #include <softsand/fluid/transient_matrix_free.h>
 
-#include <map>
+#include <algorithm>
+#include <array>
 #include <utility>
 
 namespace softsand
@@ -42,9 +43,18 @@ namespace softsand
       // each cell's own terms as compute_reactions() (no second assembly).
       TimerOutput::Scope t(timer, "fluid: reactions");
       rigid_reactions.clear();
-      NodeReactionSum<dim> node_reactions;
-      node_reactions.reserve(rigid_dof_grain.size() / dim +
-                             hanging_rigid_parents.size());
+      // Each reaction row's residual, summed over its cells (rows of ghost
+      // nodes go to their owners), then each owned node once: a hash
+      // lookup per cell and node cost more than the cells' kernels.
+      VectorType row_residual;
+      matrix_free.initialize_dof_vector(row_residual, 0);
+      struct ReactionNode
+      {
+        std::array<unsigned int, dim> local;
+        Point<dim>                    position;
+      };
+      std::vector<ReactionNode> reaction_nodes;
+      std::vector<bool>         listed(partitioner_u.locally_owned_size());
       VectorType u_full, p_full;
       data.copy_to_kernel_layout(solution, 0, u_full);
       data.copy_to_kernel_layout(solution, 1, p_full);
@@ -76,11 +86,8 @@ namespace softsand
       std::vector<double>         void_fraction(n_q, 1.);
       std::vector<Tensor<1, dim>> solid_velocity(n_q);
       std::vector<int>            solid_index(n_q, -1);
-      Vector<double>              force_value(dim);
       Tensor<1, dim>              boundary_force;
       const bool hanging_rigid = !hanging_rigid_parents.empty();
-      std::map<types::global_dof_index, std::pair<unsigned int, Point<dim>>>
-        owned_rigid_nodes;
       const QGauss<dim - 1>            face_quadrature(fe.degree + 1);
       FEFaceValues<dim>                face_values(data.mapping,
                                     fe_velocity,
@@ -188,55 +195,37 @@ namespace softsand
 
             if (has_rigid)
               {
-                node_values.reinit(cell);
+                bool positioned = false;
                 for (unsigned int i = 0; i < u_dofs.size(); ++i)
                   {
                     const unsigned int local =
                       partitioner_u.global_to_local(u_dofs[i]);
                     if (!(data.velocity_flags[local] & 6))
                       continue;
-                    const auto node = rigid_dof_grain.find(u_dofs[i]);
-                    const auto hanging =
-                      hanging_rigid ? hanging_rigid_parents.find(u_dofs[i]) :
-                                      hanging_rigid_parents.end();
-                    if (node == rigid_dof_grain.end() &&
-                        hanging == hanging_rigid_parents.end())
+                    row_residual.local_element(local) += residual(i);
+                    // The node by its first component's DoF, listed by
+                    // the first owned cell that reaches it.
+                    const unsigned int base =
+                      fe_velocity.system_to_component_index(i).second;
+                    const unsigned int first =
+                      fe_velocity.component_to_system_index(0, base);
+                    const unsigned int first_local =
+                      partitioner_u.global_to_local(u_dofs[first]);
+                    if (first_local >= listed.size() || listed[first_local])
                       continue;
-                    const auto [c, base] =
-                      fe_velocity.system_to_component_index(i);
-                    const double r = residual(i);
-                    // The node by its first component's DoF.
-                    const types::global_dof_index node_key =
-                      u_dofs[fe_velocity.component_to_system_index(0, base)];
-                    const auto add = [&](const int grain, const double w) {
-                      node_reactions.add(grain,
-                                         node_key,
-                                         node_values.quadrature_point(i),
-                                         c,
-                                         w * r);
-                    };
-                    // A node whose target blends grains (penalization
-                    // limit) hands each its share of the reaction.
-                    const auto add_node = [&](const types::global_dof_index j,
-                                              const double w) {
-                      for_each_grain_share(
-                        rigid_dof_grain, rigid_dof_shares, j, w, add);
-                    };
-                    if (node != rigid_dof_grain.end())
+                    listed[first_local] = true;
+                    if (!positioned)
                       {
-                        add_node(u_dofs[i], 1.);
-                        // Only the rows the traction faces reach.
-                        if (data.has_traction &&
-                            partitioner_u.in_local_range(u_dofs[i]) &&
-                            traction_force.local_element(local) != 0)
-                          owned_rigid_nodes.emplace(
-                            u_dofs[i],
-                            std::make_pair(c,
-                                           node_values.quadrature_point(i)));
+                        node_values.reinit(cell);
+                        positioned = true;
                       }
-                    if (hanging != hanging_rigid_parents.end())
-                      for (const auto &[parent, weight] : hanging->second)
-                        add_node(parent, weight);
+                    ReactionNode node;
+                    for (unsigned int c = 0; c < dim; ++c)
+                      node.local[c] = partitioner_u.global_to_local(
+                        u_dofs[fe_velocity.component_to_system_index(c,
+                                                                     base)]);
+                    node.position = node_values.quadrature_point(first);
+                    reaction_nodes.push_back(node);
                   }
               }
             if (on_wall)
@@ -266,30 +255,57 @@ namespace softsand
                     }
               }
           }
-      node_reactions.move_to(rigid_reactions);
-      // The traction faces' term acts on rows, not cells: the rigid
-      // nodes' share once per owned node, at the node.
-      if (data.has_traction)
-        for (const auto &[i, node] : owned_rigid_nodes)
-          {
-            const double r =
-              traction_force.local_element(partitioner_u.global_to_local(i));
-            if (r != 0)
-              {
-                Tensor<1, dim> f;
-                f[node.first] = -r;
-                for_each_grain_share(
-                  rigid_dof_grain,
-                  rigid_dof_shares,
-                  i,
-                  1.,
-                  [&](const int grain, const double share) {
-                    rigid_reactions.emplace_back(grain,
-                                                 node.second,
-                                                 share * f);
-                  });
-              }
-          }
+      row_residual.compress(VectorOperation::add);
+      // Each node's reaction, split among the grains of its target (rigid
+      // node) or of its parents (hanging node); a rigid node's row also
+      // takes the traction faces' term, which acts on rows, not cells.
+      std::vector<std::pair<int, Tensor<1, dim>>> grain_sums;
+      for (const auto &node : reaction_nodes)
+        {
+          grain_sums.clear();
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              const unsigned int local = node.local[c];
+              if (!(data.velocity_flags[local] & 6))
+                continue;
+              const types::global_dof_index i =
+                partitioner_u.local_to_global(local);
+              const auto add = [&](const int grain, const double value) {
+                auto sum = std::find_if(grain_sums.begin(),
+                                        grain_sums.end(),
+                                        [grain](const auto &g) {
+                                          return g.first == grain;
+                                        });
+                if (sum == grain_sums.end())
+                  sum = grain_sums.emplace(grain_sums.end(),
+                                           grain,
+                                           Tensor<1, dim>());
+                sum->second[c] += value;
+              };
+              const double r = row_residual.local_element(local);
+              if (rigid_dof_grain.count(i))
+                {
+                  const double traction =
+                    data.has_traction ? traction_force.local_element(local) :
+                                        0.;
+                  for_each_grain_share(
+                    rigid_dof_grain, rigid_dof_shares, i, r - traction, add);
+                }
+              if (hanging_rigid)
+                {
+                  const auto hanging = hanging_rigid_parents.find(i);
+                  if (hanging != hanging_rigid_parents.end())
+                    for (const auto &[parent, weight] : hanging->second)
+                      for_each_grain_share(rigid_dof_grain,
+                                           rigid_dof_shares,
+                                           parent,
+                                           weight * r,
+                                           add);
+                }
+            }
+          for (const auto &[grain, force] : grain_sums)
+            rigid_reactions.emplace_back(grain, node.position, force);
+        }
       boundary_force += pressure_face_force();
       last_boundary_force =
         Utilities::MPI::sum(boundary_force, mpi_communicator);

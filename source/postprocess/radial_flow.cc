@@ -1,10 +1,12 @@
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/table.h>
 
 #include <deal.II/fe/fe_values.h>
 
 #include <softsand/base/parameter_tools.h>
 #include <softsand/postprocess/radial_flow.h>
 
+#include <array>
 #include <cmath>
 
 namespace softsand
@@ -97,13 +99,27 @@ namespace softsand
         return result;
       const auto       &fe = dof_handler.get_fe();
       const QGauss<dim> quadrature(fe.degree + 2);
-      FEValues<dim>     fe_values(fe,
-                              quadrature,
-                              update_values | update_quadrature_points |
-                                update_JxW_values);
-      const FEValuesExtractors::Vector velocities(0);
+      // The system's values (pressure) only where a ring crosses a cell;
+      // the velocity everywhere from its scalar element's values at the
+      // points, tabulated once (the system's FEValues copied all 89 shape
+      // functions' values per cell: most of this pass).
+      FEValues<dim> fe_values(fe, quadrature, update_values);
+      const FiniteElement<dim> &fe_scalar = fe.base_element(0);
+      FEValues<dim>             geometry(fe_scalar,
+                             quadrature,
+                             update_quadrature_points | update_JxW_values);
       const FEValuesExtractors::Scalar pressure(dim);
       const unsigned int               n_q = quadrature.size();
+      const unsigned int n_nodes = fe_scalar.n_dofs_per_cell();
+      Table<2, double>   shape(n_nodes, n_q);
+      for (unsigned int b = 0; b < n_nodes; ++b)
+        for (unsigned int q = 0; q < n_q; ++q)
+          shape(b, q) = fe_scalar.shape_value(b, quadrature.point(q));
+      std::vector<std::array<unsigned int, dim>> node_dofs(n_nodes);
+      for (unsigned int b = 0; b < n_nodes; ++b)
+        for (unsigned int c = 0; c < dim; ++c)
+          node_dofs[b][c] = fe.component_to_system_index(c, b);
+      Vector<double>                   cell_values(fe.n_dofs_per_cell());
       std::vector<double>              p(n_q), vf(n_q, 1.);
       std::vector<Tensor<1, dim>>      u(n_q), u_s(n_q);
       std::vector<int>                 index(n_q);
@@ -129,18 +145,26 @@ namespace softsand
             for (const double radius : radii)
               on_ring = on_ring || std::abs(rc - radius) <=
                                      half_width + half_diagonal;
-            fe_values.reinit(cell);
-            fe_values[velocities].get_function_values(solution, u);
+            geometry.reinit(cell);
+            cell->get_dof_values(solution, cell_values);
+            for (unsigned int q = 0; q < n_q; ++q)
+              {
+                u[q] = Tensor<1, dim>();
+                for (unsigned int b = 0; b < n_nodes; ++b)
+                  for (unsigned int c = 0; c < dim; ++c)
+                    u[q][c] += cell_values(node_dofs[b][c]) * shape(b, q);
+              }
             if (on_ring)
               {
+                fe_values.reinit(cell);
                 fe_values[pressure].get_function_values(solution, p);
                 if (solids != nullptr)
                   solids->evaluate(
-                    *cell, fe_values.get_quadrature_points(), vf, u_s, index);
+                    *cell, geometry.get_quadrature_points(), vf, u_s, index);
               }
             for (unsigned int q = 0; q < n_q; ++q)
               {
-                const Point<dim> &x = fe_values.quadrature_point(q);
+                const Point<dim> &x = geometry.quadrature_point(q);
                 Tensor<1, dim>    e = x - region.center;
                 if (dim == 3)
                   e -= (e * region.axis) * region.axis;
@@ -148,7 +172,7 @@ namespace softsand
                 if (!(r > 0))
                   continue;
                 e /= r;
-                const double JxW = fe_values.JxW(q);
+                const double JxW = geometry.JxW(q);
                 for (unsigned int k = 0; k < n; ++k)
                   {
                     if (std::abs(r - radii[k]) <= half_width)

@@ -513,6 +513,32 @@ namespace softsand
         const std::vector<types::global_dof_index> &dof_indices,
         const std::vector<unsigned int>            &component,
         const double                                h) const;
+      /// Whether the penalization limit relaxes continuity where its
+      /// targets squeeze or part the fluid (FluidParameters).
+      bool
+      relaxes_squeezes() const
+      {
+        return !limit_target.empty() &&
+               fluid_parameters.squeeze_relaxation > 0;
+      }
+      /// The factor on a cut cell's pressure smoothing: 1 +
+      /// squeeze relaxation * relative_target_divergence() where
+      /// relaxes_squeezes(), else 1. @p fe_values: the cell's velocity
+      /// gradients and JxW.
+      double
+      squeeze_factor(const FEValues<dim>                        &fe_values,
+                     const std::vector<types::global_dof_index> &dof_indices,
+                     const std::vector<unsigned int>            &component,
+                     const double                                h) const
+      {
+        return relaxes_squeezes() ?
+                 1. + fluid_parameters.squeeze_relaxation *
+                        relative_target_divergence(fe_values,
+                                                   dof_indices,
+                                                   component,
+                                                   h) :
+                 1.;
+      }
       /// Whether velocity dof @p i is imposed: rigid, Dirichlet, or hanging
       /// on rigid parents only (make_constraints() must have run).
       bool
