@@ -60,6 +60,7 @@ namespace softsand
       dem::GrainParameters<dim>::declare_parameters(prm);
       dem::DEMParameters::declare_parameters(prm);
       coupling::VoidFractionParameters::declare_parameters(prm);
+      coupling::HybridModelParameters::declare_parameters(prm);
       coupling::CouplingParameters::declare_parameters(prm);
       fluid::FluidParameters::declare_parameters(prm);
       fluid::SolverParameters::declare_parameters(prm);
@@ -82,6 +83,7 @@ namespace softsand
       grains.parse_parameters(prm);
       dem.parse_parameters(prm);
       void_fraction.parse_parameters(prm);
+      hybrid_model.parse_parameters(prm);
       coupling.parse_parameters(prm);
       fluid.parse_parameters(prm);
       fluid_solver.parse_parameters(prm);
@@ -103,6 +105,14 @@ namespace softsand
       radial_flow.parse_parameters(prm);
       fracture_area.parse_parameters(prm);
       const auto &inlet = boundary_conditions.inlet_region();
+      if (hybrid_model.enabled && hybrid_model.resolved_radius > 0 &&
+          !inlet.enabled())
+        base::throw_invalid_parameter(
+          "coupling/hybrid model/resolved radius",
+          prm.get({"coupling", "hybrid model"}, "resolved radius"),
+          "the resolved zone is a cylinder around the inlet region's axis: "
+          "set boundary conditions/inlet region/type = cylinder, or the "
+          "radius to none (every grain resolved) or 0 (none resolved)");
       if (!radial_flow.radii.empty() && !inlet.enabled())
         base::throw_invalid_parameter("postprocessing/radial flow/radii",
                                 prm.get({"postprocessing", "radial flow"}, "radii"),

@@ -1,6 +1,10 @@
 #include <softsand/coupling/grain_forces.h>
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature.h>
+
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
 
 namespace softsand
 {
@@ -65,6 +69,123 @@ namespace softsand
       return result;
     }
 
+    template <int dim>
+    void
+    add_porous_grain_forces(const fluid::PenalizedNavierStokes<dim> &fluid,
+                            const std::vector<dem::Grain<dim>>      &grains,
+                            const GrainSolidField<dim>              &solids,
+                            const double                   viscosity,
+                            const double                   density,
+                            GrainForces<dim>              &forces,
+                            const MPI_Comm                 comm)
+    {
+      const PorousZone<dim> *zone = solids.porous_zone();
+      if (zone == nullptr)
+        return;
+      // Where each grain's porous share is evaluated: its centre when that
+      // lies in the porous zone, else the middle of the share beyond the
+      // zone's surface, along the direction away from the axis.
+      std::vector<double>     share(grains.size());
+      std::vector<Point<dim>> where(grains.size());
+      std::vector<dem::Grain<dim>> evaluated;
+      for (unsigned int g = 0; g < grains.size(); ++g)
+        {
+          share[g] = zone->porous_share(grains[g]);
+          where[g] = grains[g].center;
+          const double r = zone->distance_from_axis(grains[g].center);
+          if (share[g] > 0 && r < zone->resolved_radius() && r > 0)
+            {
+              const double target =
+                0.5 * (zone->resolved_radius() + r + grains[g].radius);
+              const Point<dim> foot =
+                grains[g].center + (-1) * zone->radial_vector(grains[g].center);
+              where[g] = foot + (target / r) *
+                                  zone->radial_vector(grains[g].center);
+            }
+          evaluated.push_back(grains[g]);
+          evaluated.back().center = where[g];
+        }
+      const GrainLocator<dim> points(evaluated);
+
+      const auto   &dof_handler = fluid.get_dof_handler();
+      const auto   &fe          = dof_handler.get_fe();
+      const auto   &solution    = fluid.get_solution();
+      const auto   &mapping     = StaticMappingQ1<dim>::mapping;
+      const FEValuesExtractors::Vector velocities(0);
+      const FEValuesExtractors::Scalar pressure(dim);
+      // Per grain: the force and how many ranks evaluated it.
+      std::vector<double>       local((dim + 1) * grains.size(), 0.);
+      std::vector<bool>         done(grains.size(), false);
+      std::vector<unsigned int> near, inside;
+      std::vector<Point<dim>>   unit_points;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          if (!cell->is_locally_owned())
+            continue;
+          near.clear();
+          points.grains_near_box(cell->bounding_box(), near);
+          inside.clear();
+          unit_points.clear();
+          for (const unsigned int g : near)
+            if (!done[g] && share[g] > 0)
+              {
+                // A centre on a face belongs to both cells (and maybe to
+                // two ranks): counted once here, averaged over ranks below.
+                Point<dim> unit;
+                try
+                  {
+                    unit = mapping.transform_real_to_unit_cell(cell, where[g]);
+                  }
+                catch (const typename Mapping<dim>::ExcTransformationFailed &)
+                  {
+                    continue;
+                  }
+                if (!GeometryInfo<dim>::is_inside_unit_cell(unit, 1e-10))
+                  continue;
+                done[g] = true;
+                inside.push_back(g);
+                unit_points.push_back(
+                  GeometryInfo<dim>::project_to_unit_cell(unit));
+              }
+          if (inside.empty())
+            continue;
+          const fluid::PorousCell<dim> porous = zone->coefficients(*cell);
+          const Quadrature<dim>        at_points(unit_points);
+          FEValues<dim>                values(mapping,
+                               fe,
+                               at_points,
+                               update_values | update_gradients);
+          values.reinit(cell);
+          std::vector<Tensor<1, dim>> u(inside.size()), grad_p(inside.size());
+          values[velocities].get_function_values(solution, u);
+          values[pressure].get_function_gradients(solution, grad_p);
+          const double phi = porous.porosity;
+          for (unsigned int k = 0; k < inside.size(); ++k)
+            {
+              const auto          &grain = grains[inside[k]];
+              const Tensor<1, dim> relative = u[k] - phi * grain.velocity;
+              const double         c = porous.drag(viscosity, density, relative);
+              const double volume =
+                dim == 3 ? 4. / 3. * M_PI * std::pow(grain.radius, 3) :
+                           M_PI * grain.radius * grain.radius;
+              const Tensor<1, dim> force =
+                share[inside[k]] * volume *
+                (-grad_p[k] +
+                 (phi < 1 ? phi * c / (1 - phi) : 0.) * relative);
+              for (unsigned int d = 0; d < dim; ++d)
+                local[(dim + 1) * inside[k] + d] += force[d];
+              local[(dim + 1) * inside[k] + dim] += 1;
+            }
+        }
+      std::vector<double> global(local.size());
+      Utilities::MPI::sum(local, comm, global);
+      for (unsigned int g = 0; g < grains.size(); ++g)
+        if (const double count = global[(dim + 1) * g + dim]; count > 0)
+          for (unsigned int d = 0; d < dim; ++d)
+            forces.force[g][d] += global[(dim + 1) * g + d] / count;
+    }
+
+
     template struct GrainForces<2>;
     template struct GrainForces<3>;
     template GrainForces<2>
@@ -77,5 +198,21 @@ namespace softsand
                          const std::vector<dem::Grain<3>> &,
                          const ForceModel,
                          const MPI_Comm);
+    template void
+    add_porous_grain_forces(const fluid::PenalizedNavierStokes<2> &,
+                            const std::vector<dem::Grain<2>> &,
+                            const GrainSolidField<2> &,
+                            const double,
+                            const double,
+                            GrainForces<2> &,
+                            const MPI_Comm);
+    template void
+    add_porous_grain_forces(const fluid::PenalizedNavierStokes<3> &,
+                            const std::vector<dem::Grain<3>> &,
+                            const GrainSolidField<3> &,
+                            const double,
+                            const double,
+                            GrainForces<3> &,
+                            const MPI_Comm);
   } // namespace coupling
 } // namespace softsand

@@ -56,6 +56,21 @@ namespace softsand
 
 
     template <int dim>
+    void
+    GrainSolidField<dim>::set_porous_zone(
+      const HybridModelParameters &hybrid,
+      const Point<dim>            &axis_point,
+      const Tensor<1, dim>        &axis,
+      const BoundingBox<dim>      &domain)
+    {
+      zone = std::make_unique<PorousZone<dim>>(
+        grains, grain_locator, hybrid, axis_point, axis, domain);
+      resolved_grains  = zone->resolved_grains();
+      resolved_locator = std::make_unique<GrainLocator<dim>>(resolved_grains);
+    }
+
+
+    template <int dim>
     double
     GrainSolidField<dim>::cell_solid_fraction(
       const CellAccessor<dim, dim> &cell,
@@ -140,6 +155,8 @@ namespace softsand
       void_fraction.assign(n_q, 1.);
       solid_velocity.assign(n_q, Tensor<1, dim>());
       solid_index.assign(n_q, -1);
+      if (in_porous_zone(cell))
+        return;
 
       int        dominant = -1;
       const auto relation =
@@ -192,6 +209,8 @@ namespace softsand
       void_fraction.assign(n_q, 1.);
       solid_velocity.assign(n_q, Tensor<1, dim>());
       solid_index.assign(n_q, -1);
+      if (in_porous_zone(cell))
+        return;
       int              dominant = -1;
       BoundingBox<dim> box      = cell.bounding_box();
       if (inflation > 0)
@@ -229,6 +248,8 @@ namespace softsand
     GrainSolidField<dim>::n_solids_near(const CellAccessor<dim, dim> &cell,
                                         const double reach) const
     {
+      if (in_porous_zone(cell))
+        return 0;
       BoundingBox<dim> box = cell.bounding_box();
       box.extend(reach);
       std::vector<unsigned int> near;

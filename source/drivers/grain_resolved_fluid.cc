@@ -28,11 +28,33 @@ namespace softsand
       , mesh(comm,
              typename Triangulation<dim>::MeshSmoothing(
                Triangulation<dim>::limit_level_difference_at_vertices))
-      , solids(std::make_unique<coupling::GrainSolidField<dim>>(
-          grain_list,
-          parameters.void_fraction))
+      , solids(make_solid_field())
       , columns(make_fluid_columns(parameters, comm))
     {}
+
+
+    template <int dim>
+    std::unique_ptr<coupling::GrainSolidField<dim>>
+    GrainResolvedFluid<dim>::make_solid_field() const
+    {
+      auto field = std::make_unique<coupling::GrainSolidField<dim>>(
+        grain_list, parameters.void_fraction);
+      if (parameters.hybrid_model.enabled)
+        {
+          // Without an inlet region the radius is 0 (checked when
+          // parsed): every grain porous, whatever the axis.
+          const auto &inlet = parameters.boundary_conditions.inlet_region();
+          Tensor<1, dim> axis;
+          axis[dim - 1] = 1;
+          field->set_porous_zone(
+            parameters.hybrid_model,
+            inlet.enabled() ? inlet.center : Point<dim>(),
+            inlet.enabled() ? inlet.axis : axis,
+            BoundingBox<dim>(std::make_pair(parameters.mesh.lower_corner,
+                                            parameters.mesh.upper_corner)));
+        }
+      return field;
+    }
 
 
     template <int dim>
@@ -40,8 +62,7 @@ namespace softsand
     GrainResolvedFluid<dim>::set_grains(std::vector<dem::Grain<dim>> new_grains)
     {
       grain_list = std::move(new_grains);
-      solids     = std::make_unique<coupling::GrainSolidField<dim>>(
-        grain_list, parameters.void_fraction);
+      solids     = make_solid_field();
       if (navier_stokes)
         navier_stokes->set_solid_field(grain_list.empty() ? nullptr :
                                                             solids.get());
@@ -57,7 +78,8 @@ namespace softsand
           const typename Triangulation<dim>::cell_iterator &cell,
           const typename Triangulation<dim>::CellStatus) -> unsigned int {
           int grain = -1;
-          return solids->locator().classify_box(cell->bounding_box(), grain) ==
+          return solids->refinement_locator().classify_box(
+                   cell->bounding_box(), grain) ==
                      coupling::GrainLocator<dim>::BoxRelation::cut ?
                    static_cast<unsigned int>(std::round(1 + extra_weight)) :
                    1u;
@@ -94,7 +116,7 @@ namespace softsand
           adapt_to_grains(false);
         else if (resolve_grains)
           coupling::refine_around_grains(mesh,
-                                         solids->locator(),
+                                         solids->refinement_locator(),
                                          solids->locator().min_diameter() /
                                            m.cells_per_diameter,
                                          m.max_refinement_level,
@@ -113,8 +135,12 @@ namespace softsand
         return;
       // A grain across fewer than two cells is no solid body on the mesh:
       // a 1 mm sphere in one 10 mm cell gave a drag coefficient of 1.6e18.
+      // The hybrid model's porous grains need no resolution.
+      const auto &resolved = solids->refinement_locator();
+      if (resolved.grains().empty())
+        return;
       const double finest    = coupling::min_cell_edge(mesh);
-      const double d_min     = solids->locator().min_diameter();
+      const double d_min     = resolved.min_diameter();
       const double per_grain = d_min / finest;
       const auto three_digits = [](const double x) {
         std::ostringstream s;
@@ -153,7 +179,7 @@ namespace softsand
           for (; sweeps < 2 * m.max_refinement_level + 2; ++sweeps)
             {
               if (!coupling::flag_cells_around_grains(mesh,
-                                                      solids->locator(),
+                                                      solids->refinement_locator(),
                                                       target,
                                                       margin,
                                                       m.global_refinements,
@@ -219,6 +245,14 @@ namespace softsand
             grain_list,
             coupling::ForceModel::penalization_reaction,
             mpi_communicator);
+          if (solids->porous_zone() != nullptr)
+            coupling::add_porous_grain_forces(*navier_stokes,
+                                              grain_list,
+                                              *solids,
+                                              parameters.fluid.viscosity,
+                                              parameters.fluid.density,
+                                              reaction_forces,
+                                              mpi_communicator);
           if (parameters.postprocessing.eq7_forces ||
               parameters.coupling.paper_force)
             eq7_forces = coupling::compute_grain_forces(
@@ -261,6 +295,8 @@ namespace softsand
         TimerOutput::Scope t(timer, "postprocess: columns");
         for (const auto &source : columns)
           source->add_columns(snapshot, row);
+        if (const auto *zone = solids->porous_zone())
+          add_hybrid_columns(*zone, row);
       }
       if (write_files)
         {
@@ -271,6 +307,32 @@ namespace softsand
             write_grain_forces();
         }
       return row;
+    }
+
+
+    template <int dim>
+    void
+    GrainResolvedFluid<dim>::add_hybrid_columns(
+      const coupling::PorousZone<dim> &zone,
+      postprocess::Columns            &row) const
+    {
+      // How much of the pack the hybrid model resolves: grains by volume
+      // (their resolved shares), cells by count.
+      double resolved_volume = 0, volume = 0;
+      for (const auto &g : grain_list)
+        {
+          const double v = std::pow(g.radius, dim);
+          volume += v;
+          resolved_volume += (1. - zone.porous_share(g)) * v;
+        }
+      double porous_cells = 0;
+      for (const auto &cell : mesh.active_cell_iterators())
+        if (cell->is_locally_owned() && zone.is_porous(*cell))
+          porous_cells += 1;
+      porous_cells = Utilities::MPI::sum(porous_cells, mpi_communicator);
+      row["resolved_grain_fraction"] =
+        volume > 0 ? resolved_volume / volume : 0.;
+      row["porous_cell_fraction"] = porous_cells / mesh.n_global_active_cells();
     }
 
 

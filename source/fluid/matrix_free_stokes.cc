@@ -450,6 +450,12 @@ namespace softsand
                                         void_fraction,
                                         solid_velocity,
                                         solid_index);
+                // The hybrid model's porous cells: Darcy's drag (Stokes:
+                // no Forchheimer term).
+                const PorousCell<dim> porous =
+                  solid_field != nullptr && solid_field->has_porous_zone() ?
+                    solid_field->porous_cell(*cell_p) :
+                    PorousCell<dim>();
                 cell_u->get_dof_indices(u_dofs);
                 cell_p->get_dof_indices(p_dofs);
 
@@ -536,9 +542,14 @@ namespace softsand
                 local_laplace = 0;
                 for (unsigned int q = 0; q < n_q; ++q)
                   {
+                    const double drag =
+                      porous.porous && !reservoir ?
+                        mu * porous.inverse_permeability :
+                        0.;
                     const double beta =
                       reservoir ? 0. :
-                                  brinkman_coefficient(void_fraction[q], dt);
+                                  brinkman_coefficient(void_fraction[q], dt) +
+                                    drag;
                     data.coefficients->reaction(batch, q)[lane] = beta;
                     if (reservoir)
                       force_value = 0;
@@ -546,7 +557,9 @@ namespace softsand
                       body_force->vector_value(points[q], force_value);
                     for (unsigned int d = 0; d < dim; ++d)
                       rhs_values[q][d][lane] =
-                        force_value[d] + beta * solid_velocity[q][d];
+                        force_value[d] +
+                        (beta - drag) * solid_velocity[q][d] +
+                        drag * porous.porosity * porous.solid_velocity[d];
 
                     double mass_weight = free_fraction / mu;
                     if (schur == SolverParameters::Schur::weighted_mass)
@@ -700,11 +713,17 @@ namespace softsand
         // 160-180 FGMRES iterations at Theta = 1e12) and a penalty capped at
         // 1e2..1e4 mu / h^2 on coarse levels (no convergence at N = 16).
         const auto level_coefficient =
-          [this, dt](const CellAccessor<dim, dim>  &cell,
+          [this, dt, mu](const CellAccessor<dim, dim>  &cell,
                      const std::vector<Point<dim>> &points,
                      const bool,
                      std::vector<double> &beta) {
             beta.assign(points.size(), 0.);
+            if (solid_field != nullptr && solid_field->has_porous_zone())
+              {
+                const PorousCell<dim> porous = solid_field->porous_cell(cell);
+                if (porous.porous)
+                  beta.assign(points.size(), mu * porous.inverse_permeability);
+              }
             if (solid_field == nullptr || rigid_nodes())
               return;
             std::vector<double>         vf;
@@ -712,7 +731,7 @@ namespace softsand
             std::vector<int>            index;
             evaluate_solids(cell, points, vf, u_s, index);
             for (unsigned int q = 0; q < points.size(); ++q)
-              beta[q] = brinkman_coefficient(vf[q], dt);
+              beta[q] += brinkman_coefficient(vf[q], dt);
           };
         typename VelocityMultigrid<dim>::Settings settings;
         settings.smoother_degree = solver_parameters.smoother_degree;

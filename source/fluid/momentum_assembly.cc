@@ -348,6 +348,11 @@ namespace softsand
                 solid_index);
             else
               void_fraction.assign(n_q, 1.);
+            // The hybrid model's porous cells: a drag instead of grains.
+            const PorousCell<dim> porous =
+              solid_field != nullptr && solid_field->has_porous_zone() ?
+                solid_field->porous_cell(*cell) :
+                PorousCell<dim>();
 
             if (kind == Assembly::steady_picard ||
                 kind == Assembly::steady_newton)
@@ -473,6 +478,15 @@ namespace softsand
                             beta_rhs += pseudo * w;
                           }
                       }
+                  }
+
+                if (porous.porous)
+                  {
+                    const Tensor<1, dim> grain_flux =
+                      porous.porosity * porous.solid_velocity;
+                    const double drag = porous.drag(mu, rho, w - grain_flux);
+                    beta += drag;
+                    beta_rhs += drag * grain_flux;
                   }
 
                 body_force->vector_value(fe_values.quadrature_point(q),

@@ -501,6 +501,18 @@ namespace softsand
         advance_matrix_free(dt, order);
       else
         {
+          // The porous cells' pore inertia (rho / phi) is on the
+          // matrix-free step only.
+          AssertThrow(solid_field == nullptr || !solid_field->has_porous_zone(),
+                      ExcMessage(
+                        "Parameter coupling/hybrid model/resolved radius is "
+                        "set, but the transient step is matrix based (fluid "
+                        "solver/transient solver, or a solid model other than "
+                        "rigid nodes or the penalization limit): the hybrid "
+                        "model's porous cells are implemented on the "
+                        "matrix-free transient step and the steady solves. "
+                        "Set fluid solver/transient solver = matrix free, or "
+                        "resolved radius = none."));
           assemble(Assembly::transient, dt, order);
           solve_linear(true);
           compute_reactions(Assembly::transient, dt, order);

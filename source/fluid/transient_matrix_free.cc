@@ -212,6 +212,22 @@ namespace softsand
                                 void_fraction,
                                 solid_velocity,
                                 solid_index);
+              // The hybrid model's porous cells: a drag instead of grains.
+              const PorousCell<dim> porous =
+                solid_field != nullptr && solid_field->has_porous_zone() ?
+                  solid_field->porous_cell(
+                    *matrix_free.get_cell_iterator(batch, lane, 0)) :
+                  PorousCell<dim>();
+              const Tensor<1, dim> grain_flux =
+                porous.porosity * porous.solid_velocity;
+              // The superficial velocity's momentum equation: the pore
+              // fluid's inertia and viscosity, rho alpha / phi d u / dt and
+              // mu / phi lap u (phi = 1 outside the porous zone). The
+              // convection keeps rho: Temam's skew form is energy-neutral
+              // only with one coefficient on both sides of a face (with
+              // rho / phi^2 the resolved zone's edge blew up at 16 kPa).
+              const double inverse_porosity = 1. / porous.porosity;
+              coefficients.viscosity_scale[batch][lane] = inverse_porosity;
               for (unsigned int q = 0; q < n_q; ++q)
                 {
                   Tensor<1, dim> u_old, u_older;
@@ -240,12 +256,23 @@ namespace softsand
                   const Tensor<1, dim> w =
                     bdf.e1 * u_old + bdf.e2 * u_older;
                   const double div_w = bdf.e1 * div_old + bdf.e2 * div_older;
+                  const double drag =
+                    porous.porous ?
+                      porous.drag(fluid_parameters.viscosity, rho,
+                                  w - grain_flux) :
+                      0.;
+                  const double p1 = porous.inertia_scale;
                   coefficients.reaction(batch, q)[lane] =
-                    bdf.a0 * rho_star / dt + 0.5 * rho * div_w;
+                    p1 * bdf.a0 * rho_star / dt + 0.5 * rho * div_w + drag;
                   for (unsigned int d = 0; d < dim; ++d)
                     coefficients.advection(batch, q)[d][lane] = rho * w[d];
-                  const Tensor<1, dim> right = right_hand_side(
-                    points[q], u_old, u_older, vf, solid_velocity[q]);
+                  const Tensor<1, dim> right =
+                    right_hand_side(points[q],
+                                    p1 * u_old,
+                                    p1 * u_older,
+                                    vf,
+                                    solid_velocity[q]) +
+                    drag * grain_flux;
                   for (unsigned int d = 0; d < dim; ++d)
                     rhs_values[q][d][lane] = right[d];
                 }

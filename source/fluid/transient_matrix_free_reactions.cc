@@ -155,6 +155,13 @@ namespace softsand
                                   solid_velocity,
                                   solid_index);
               }
+            const PorousCell<dim> porous =
+              !reservoir && solid_field != nullptr &&
+                  solid_field->has_porous_zone() ?
+                solid_field->porous_cell(*cell) :
+                PorousCell<dim>();
+            const Tensor<1, dim> grain_flux =
+              porous.porosity * porous.solid_velocity;
             Tensor<1, dim, VectorizedArray<double>> force;
             Tensor<2, dim, VectorizedArray<double>> flux;
             for (unsigned int q = 0; q < n_q; ++q)
@@ -178,9 +185,20 @@ namespace softsand
                         for (unsigned int d = 0; d < dim; ++d)
                           u_oo[d] = v2[d][lane];
                       }
-                    const Tensor<1, dim> right = right_hand_side(
-                      points[q], u_o, u_oo, void_fraction[q],
+                    // Porous cells: the history by alpha / phi, as in
+                    // the step's assembly.
+                    Tensor<1, dim> right = right_hand_side(
+                      points[q], porous.inertia_scale * u_o,
+                      porous.inertia_scale * u_oo, void_fraction[q],
                       solid_velocity[q]);
+                    // The porous drag's share, as in the step's assembly.
+                    if (porous.porous)
+                      right += porous.drag(fluid_parameters.viscosity,
+                                           right_hand_side.rho,
+                                           right_hand_side.bdf.e1 * u_o +
+                                             right_hand_side.bdf.e2 * u_oo -
+                                             grain_flux) *
+                               grain_flux;
                     for (unsigned int d = 0; d < dim; ++d)
                       force[d][lane] -= right[d];
                   }

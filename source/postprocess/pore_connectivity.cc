@@ -79,6 +79,9 @@ namespace softsand
             if (const auto *region = bc.pressure_region(cell->center()))
               s = open | (region == &bc.inlet_region() ? joined_inlet :
                                                          joined_outlet);
+            else if (solids.porous_zone() != nullptr &&
+                     solids.porous_zone()->is_porous(*cell))
+              s = open; // the hybrid model's porous cells carry flow
             else
               {
                 int grain;

@@ -35,6 +35,7 @@ namespace softsand
       dem::GrainParameters<dim>            grains;
       dem::DEMParameters                   dem;
       coupling::VoidFractionParameters     void_fraction;
+      coupling::HybridModelParameters      hybrid_model;
       coupling::CouplingParameters         coupling;
       fluid::FluidParameters               fluid;
       fluid::SolverParameters              fluid_solver;

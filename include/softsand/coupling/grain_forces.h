@@ -1,6 +1,7 @@
 #ifndef softsand_coupling_grain_forces_h
 #define softsand_coupling_grain_forces_h
 
+#include <softsand/coupling/grain_solid_field.h>
 #include <softsand/dem/grain.h>
 #include <softsand/fluid/penalized_navier_stokes.h>
 
@@ -39,6 +40,27 @@ namespace softsand
                          const std::vector<dem::Grain<dim>>      &grains,
                          const ForceModel                          model,
                          const MPI_Comm                            comm);
+
+    /**
+     * The hybrid model's force on grains in the porous zone, added to
+     * @p forces (doc/architecture.md, "The hybrid model"). Per unit volume
+     * of pack the fluid pushes the grains by -(1 - phi) grad p and drags
+     * them by phi c (u - phi v) (c the porous cell's drag coefficient, u the
+     * superficial velocity, v the grain's velocity), so one grain of volume
+     * V feels F = V (-grad p + phi c (u - phi v) / (1 - phi)); at rest
+     * (u = -grad p / c) that is -V grad p / (1 - phi). A grain beyond the
+     * zone's surface by a share s of its volume gets s F, evaluated at the
+     * middle of that share; its rigid nodes carry the rest. No torque.
+     */
+    template <int dim>
+    void
+    add_porous_grain_forces(const fluid::PenalizedNavierStokes<dim> &fluid,
+                            const std::vector<dem::Grain<dim>>      &grains,
+                            const GrainSolidField<dim>              &solids,
+                            const double                   viscosity,
+                            const double                   density,
+                            GrainForces<dim>              &forces,
+                            const MPI_Comm                 comm);
   } // namespace coupling
 } // namespace softsand
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <softsand/coupling/grain_locator.h>
+#include <softsand/coupling/porous_zone.h>
 #include <softsand/fluid/solid_field.h>
 
 #include <memory>
@@ -53,6 +54,42 @@ namespace softsand
       GrainSolidField(const std::vector<dem::Grain<dim>> &grains,
                       const VoidFractionParameters       &parameters);
 
+      /// The hybrid model: grains resolved near the inlet's axis, a porous
+      /// medium beyond (PorousZone). Cells of the porous zone then see no
+      /// solid through evaluate(); the mesh is refined around the resolved
+      /// grains only (refinement_locator()).
+      void
+      set_porous_zone(const HybridModelParameters &parameters,
+                      const Point<dim>            &axis_point,
+                      const Tensor<1, dim>        &axis,
+                      const BoundingBox<dim>      &domain);
+
+      const PorousZone<dim> *
+      porous_zone() const
+      {
+        return zone.get();
+      }
+
+      fluid::PorousCell<dim>
+      porous_cell(const CellAccessor<dim, dim> &cell) const override
+      {
+        return zone ? zone->porous_cell(cell) : fluid::PorousCell<dim>();
+      }
+
+      bool
+      has_porous_zone() const override
+      {
+        return zone != nullptr;
+      }
+
+      /// The grains the mesh is refined around: all, or with a porous zone
+      /// those that reach into the resolved one.
+      const GrainLocator<dim> &
+      refinement_locator() const
+      {
+        return resolved_locator ? *resolved_locator : grain_locator;
+      }
+
       void
       evaluate(const CellAccessor<dim, dim> &cell,
                const std::vector<Point<dim>>  &points,
@@ -89,6 +126,15 @@ namespace softsand
       const std::vector<dem::Grain<dim>> &grains;
       VoidFractionParameters              parameters;
       GrainLocator<dim>                   grain_locator;
+      std::unique_ptr<PorousZone<dim>>    zone;
+      std::vector<dem::Grain<dim>>        resolved_grains;
+      std::unique_ptr<GrainLocator<dim>>  resolved_locator;
+
+      bool
+      in_porous_zone(const CellAccessor<dim, dim> &cell) const
+      {
+        return zone && zone->is_porous(cell);
+      }
     };
   } // namespace coupling
 } // namespace softsand

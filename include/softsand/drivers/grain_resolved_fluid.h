@@ -165,6 +165,16 @@ namespace softsand
       parallel::distributed::Triangulation<dim>           mesh;
       std::vector<dem::Grain<dim>>                        grain_list;
       std::unique_ptr<coupling::GrainSolidField<dim>>     solids;
+
+      /// The grains' solid field of grain_list, with the hybrid model's
+      /// porous zone when the scene asks for it.
+      std::unique_ptr<coupling::GrainSolidField<dim>>
+      make_solid_field() const;
+
+      /// resolved_grain_fraction, porous_cell_fraction (hybrid model).
+      void
+      add_hybrid_columns(const coupling::PorousZone<dim> &zone,
+                         postprocess::Columns            &row) const;
       std::unique_ptr<fluid::PenalizedNavierStokes<dim>>  navier_stokes;
       std::unique_ptr<io::FieldOutput<dim>>               field_output;
       const postprocess::FluidColumnList<dim>             columns;

@@ -22,11 +22,60 @@ namespace softsand
      * The fluid module sees only this interface; coupling/ implements it for
      * grains.
      */
+    /**
+     * A cell of the hybrid model's porous zone: its grains are not resolved
+     * but seen as a porous medium (doc/architecture.md, "The hybrid model").
+     * The momentum equation there carries the drag
+     * (mu a + rho b |u - phi u_s|) (u - phi u_s), u the superficial
+     * velocity, so that a resting pack gives Darcy's law with K = 1 / a and
+     * Forchheimer's correction b; its time derivative is rho alpha / phi
+     * du/dt (alpha the tortuosity) and its viscosity mu / phi.
+     */
+    template <int dim>
+    struct PorousCell
+    {
+      bool           porous               = false;
+      double         porosity             = 1;
+      double         inverse_permeability = 0; // a [1/m^2]
+      double         inertial_coefficient = 0; // b [1/m]
+      Tensor<1, dim> solid_velocity;           // the grains' mean velocity
+      /// The pore fluid's inertia per unit superficial momentum: the
+      /// tortuosity over the porosity, alpha / phi (1 outside).
+      double inertia_scale = 1;
+
+      /// The drag coefficient for the relative superficial velocity
+      /// @p relative.
+      double
+      drag(const double           viscosity,
+           const double           density,
+           const Tensor<1, dim> &relative) const
+      {
+        return viscosity * inverse_permeability +
+               density * inertial_coefficient * relative.norm();
+      }
+    };
+
+
     template <int dim>
     class SolidField
     {
     public:
       virtual ~SolidField() = default;
+
+      /// Whether @p cell lies in a porous zone and, if so, its drag
+      /// coefficients. Such cells see no solid through evaluate().
+      virtual PorousCell<dim>
+      porous_cell(const CellAccessor<dim, dim> &) const
+      {
+        return {};
+      }
+
+      /// Whether any cell may be porous (no pass over cells otherwise).
+      virtual bool
+      has_porous_zone() const
+      {
+        return false;
+      }
 
       /// Fill @p void_fraction, @p solid_velocity and @p solid_index (-1:
       /// no solid) for the @p points of @p cell. Cells far from any solid
