@@ -85,25 +85,21 @@ namespace softsand
       // Where each grain's porous share is evaluated: its centre when that
       // lies in the porous zone, else the middle of the share beyond the
       // zone's surface, along the direction away from the axis.
-      std::vector<double>     share(grains.size());
-      std::vector<Point<dim>> where(grains.size());
-      std::vector<dem::Grain<dim>> evaluated;
+      // (A copy of the grains with those points as centres: its locator
+      // finds them by cell.)
+      std::vector<double>          share(grains.size());
+      std::vector<dem::Grain<dim>> evaluated(grains);
       for (unsigned int g = 0; g < grains.size(); ++g)
         {
           share[g] = zone->porous_share(grains[g]);
-          where[g] = grains[g].center;
-          const double r = zone->distance_from_axis(grains[g].center);
+          const Tensor<1, dim> radial = zone->radial_vector(grains[g].center);
+          const double         r      = radial.norm();
           if (share[g] > 0 && r < zone->resolved_radius() && r > 0)
             {
               const double target =
                 0.5 * (zone->resolved_radius() + r + grains[g].radius);
-              const Point<dim> foot =
-                grains[g].center + (-1) * zone->radial_vector(grains[g].center);
-              where[g] = foot + (target / r) *
-                                  zone->radial_vector(grains[g].center);
+              evaluated[g].center += (target / r - 1) * radial;
             }
-          evaluated.push_back(grains[g]);
-          evaluated.back().center = where[g];
         }
       const GrainLocator<dim> points(evaluated);
 
@@ -122,19 +118,22 @@ namespace softsand
         {
           if (!cell->is_locally_owned())
             continue;
+          const BoundingBox<dim> box = cell->bounding_box();
           near.clear();
-          points.grains_near_box(cell->bounding_box(), near);
+          points.grains_near_box(box, near);
           inside.clear();
           unit_points.clear();
           for (const unsigned int g : near)
-            if (!done[g] && share[g] > 0)
+            if (!done[g] && share[g] > 0 &&
+                box.point_inside(evaluated[g].center, 1e-10))
               {
                 // A centre on a face belongs to both cells (and maybe to
                 // two ranks): counted once here, averaged over ranks below.
                 Point<dim> unit;
                 try
                   {
-                    unit = mapping.transform_real_to_unit_cell(cell, where[g]);
+                    unit = mapping.transform_real_to_unit_cell(
+                      cell, evaluated[g].center);
                   }
                 catch (const typename Mapping<dim>::ExcTransformationFailed &)
                   {
@@ -165,11 +164,8 @@ namespace softsand
               const auto          &grain = grains[inside[k]];
               const Tensor<1, dim> relative = u[k] - phi * grain.velocity;
               const double         c = porous.drag(viscosity, density, relative);
-              const double volume =
-                dim == 3 ? 4. / 3. * M_PI * std::pow(grain.radius, 3) :
-                           M_PI * grain.radius * grain.radius;
               const Tensor<1, dim> force =
-                share[inside[k]] * volume *
+                share[inside[k]] * grain.measure() *
                 (-grad_p[k] +
                  (phi < 1 ? phi * c / (1 - phi) : 0.) * relative);
               for (unsigned int d = 0; d < dim; ++d)

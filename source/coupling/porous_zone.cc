@@ -84,9 +84,9 @@ namespace softsand
         base::throw_invalid_parameter("coupling/hybrid model/kozeny constant",
                                       prm.get("kozeny constant"),
                                       "a number > 0");
-      inertial_constant = prm.get_double("ergun inertial constant");
-      averaging_width   = prm.get_double("averaging width");
+      inertial_constant   = prm.get_double("ergun inertial constant");
       tortuosity_constant = prm.get_double("tortuosity constant");
+      averaging_width     = prm.get_double("averaging width");
       if (!(averaging_width > 0))
         base::throw_invalid_parameter("coupling/hybrid model/averaging width",
                                       prm.get("averaging width"),
@@ -112,13 +112,6 @@ namespace softsand
           return (1 + t) * (1 + t) * (2 - t) / 4;
         return 0.5 + (t * std::sqrt(1 - t * t) + std::asin(t)) / M_PI;
       }
-
-      template <int dim>
-      double
-      grain_volume(const double r)
-      {
-        return dim == 3 ? 4. / 3. * M_PI * r * r * r : M_PI * r * r;
-      }
     } // namespace
 
 
@@ -135,12 +128,8 @@ namespace softsand
       , axis_point(axis_point)
       , axis(axis.norm() > 0 ? axis / axis.norm() : axis)
       , domain(domain)
-    {
-      for (const auto &g : grains)
-        mean_diameter += g.diameter();
-      if (!grains.empty())
-        mean_diameter /= grains.size();
-    }
+      , mean_diameter(dem::mean_diameter(grains))
+    {}
 
 
     template <int dim>
@@ -178,7 +167,7 @@ namespace softsand
                      fraction_below<dim>((lo[d] - g.center[d]) / g.radius);
           if (share <= 0)
             continue;
-          const double v = share * grain_volume<dim>(g.radius);
+          const double v = share * g.measure();
           solid += v;
           momentum += v * g.velocity;
           d3 += share * std::pow(g.diameter(), 3);

@@ -321,7 +321,7 @@ namespace softsand
       double resolved_volume = 0, volume = 0;
       for (const auto &g : grain_list)
         {
-          const double v = std::pow(g.radius, dim);
+          const double v = g.measure();
           volume += v;
           resolved_volume += (1. - zone.porous_share(g)) * v;
         }

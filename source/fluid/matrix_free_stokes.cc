@@ -452,10 +452,7 @@ namespace softsand
                                         solid_index);
                 // The hybrid model's porous cells: Darcy's drag (Stokes:
                 // no Forchheimer term).
-                const PorousCell<dim> porous =
-                  solid_field != nullptr && solid_field->has_porous_zone() ?
-                    solid_field->porous_cell(*cell_p) :
-                    PorousCell<dim>();
+                const PorousCell<dim> porous = porous_cell(*cell_p);
                 cell_u->get_dof_indices(u_dofs);
                 cell_p->get_dof_indices(p_dofs);
 
@@ -559,7 +556,7 @@ namespace softsand
                       rhs_values[q][d][lane] =
                         force_value[d] +
                         (beta - drag) * solid_velocity[q][d] +
-                        drag * porous.porosity * porous.solid_velocity[d];
+                        drag * porous.grain_flux()[d];
 
                     double mass_weight = free_fraction / mu;
                     if (schur == SolverParameters::Schur::weighted_mass)
@@ -718,12 +715,8 @@ namespace softsand
                      const bool,
                      std::vector<double> &beta) {
             beta.assign(points.size(), 0.);
-            if (solid_field != nullptr && solid_field->has_porous_zone())
-              {
-                const PorousCell<dim> porous = solid_field->porous_cell(cell);
-                if (porous.porous)
-                  beta.assign(points.size(), mu * porous.inverse_permeability);
-              }
+            if (const PorousCell<dim> porous = porous_cell(cell); porous.porous)
+              beta.assign(points.size(), mu * porous.inverse_permeability);
             if (solid_field == nullptr || rigid_nodes())
               return;
             std::vector<double>         vf;

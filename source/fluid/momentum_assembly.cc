@@ -349,10 +349,7 @@ namespace softsand
             else
               void_fraction.assign(n_q, 1.);
             // The hybrid model's porous cells: a drag instead of grains.
-            const PorousCell<dim> porous =
-              solid_field != nullptr && solid_field->has_porous_zone() ?
-                solid_field->porous_cell(*cell) :
-                PorousCell<dim>();
+            const PorousCell<dim> porous = porous_cell(*cell);
 
             if (kind == Assembly::steady_picard ||
                 kind == Assembly::steady_newton)
@@ -482,8 +479,7 @@ namespace softsand
 
                 if (porous.porous)
                   {
-                    const Tensor<1, dim> grain_flux =
-                      porous.porosity * porous.solid_velocity;
+                    const Tensor<1, dim> grain_flux = porous.grain_flux();
                     const double drag = porous.drag(mu, rho, w - grain_flux);
                     beta += drag;
                     beta_rhs += drag * grain_flux;

@@ -214,12 +214,8 @@ namespace softsand
                                 solid_index);
               // The hybrid model's porous cells: a drag instead of grains.
               const PorousCell<dim> porous =
-                solid_field != nullptr && solid_field->has_porous_zone() ?
-                  solid_field->porous_cell(
-                    *matrix_free.get_cell_iterator(batch, lane, 0)) :
-                  PorousCell<dim>();
-              const Tensor<1, dim> grain_flux =
-                porous.porosity * porous.solid_velocity;
+                porous_cell(*matrix_free.get_cell_iterator(batch, lane, 0));
+              const Tensor<1, dim> grain_flux = porous.grain_flux();
               // The superficial velocity's momentum equation: the pore
               // fluid's inertia and viscosity, rho alpha / phi d u / dt and
               // mu / phi lap u (phi = 1 outside the porous zone). The

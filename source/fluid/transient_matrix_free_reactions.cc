@@ -156,12 +156,8 @@ namespace softsand
                                   solid_index);
               }
             const PorousCell<dim> porous =
-              !reservoir && solid_field != nullptr &&
-                  solid_field->has_porous_zone() ?
-                solid_field->porous_cell(*cell) :
-                PorousCell<dim>();
-            const Tensor<1, dim> grain_flux =
-              porous.porosity * porous.solid_velocity;
+              reservoir ? PorousCell<dim>() : porous_cell(*cell);
+            const Tensor<1, dim> grain_flux = porous.grain_flux();
             Tensor<1, dim, VectorizedArray<double>> force;
             Tensor<2, dim, VectorizedArray<double>> flux;
             for (unsigned int q = 0; q < n_q; ++q)

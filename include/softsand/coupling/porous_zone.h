@@ -134,7 +134,7 @@ namespace softsand
       Point<dim>                          axis_point;
       Tensor<1, dim>                      axis;
       BoundingBox<dim>                    domain;
-      double                              mean_diameter = 0;
+      double                              mean_diameter;
     };
   } // namespace coupling
 } // namespace softsand

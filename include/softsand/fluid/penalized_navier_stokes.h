@@ -513,6 +513,14 @@ namespace softsand
         const std::vector<types::global_dof_index> &dof_indices,
         const std::vector<unsigned int>            &component,
         const double                                h) const;
+      /// The hybrid model's porous coefficients of @p cell (none without
+      /// solids or outside a porous zone).
+      PorousCell<dim>
+      porous_cell(const CellAccessor<dim, dim> &cell) const
+      {
+        return solid_field != nullptr ? solid_field->porous_cell(cell) :
+                                        PorousCell<dim>();
+      }
       /// Whether the penalization limit relaxes continuity where its
       /// targets squeeze or part the fluid (FluidParameters).
       bool

@@ -16,13 +16,6 @@ namespace softsand
     using namespace dealii;
 
     /**
-     * What the penalized fluid needs to know about the solids: at the
-     * quadrature points of a cell, the void fraction vf (1 in fluid, 0 inside
-     * a solid) and the rigid velocity u_s of the solid covering the point.
-     * The fluid module sees only this interface; coupling/ implements it for
-     * grains.
-     */
-    /**
      * A cell of the hybrid model's porous zone: its grains are not resolved
      * but seen as a porous medium (doc/architecture.md, "The hybrid model").
      * The momentum equation there carries the drag
@@ -43,6 +36,14 @@ namespace softsand
       /// tortuosity over the porosity, alpha / phi (1 outside).
       double inertia_scale = 1;
 
+      /// The grains' superficial velocity phi u_s: the drag acts on
+      /// u - grain_flux().
+      Tensor<1, dim>
+      grain_flux() const
+      {
+        return porosity * solid_velocity;
+      }
+
       /// The drag coefficient for the relative superficial velocity
       /// @p relative.
       double
@@ -56,6 +57,13 @@ namespace softsand
     };
 
 
+    /**
+     * What the penalized fluid needs to know about the solids: at the
+     * quadrature points of a cell, the void fraction vf (1 in fluid, 0 inside
+     * a solid) and the rigid velocity u_s of the solid covering the point.
+     * The fluid module sees only this interface; coupling/ implements it for
+     * grains.
+     */
     template <int dim>
     class SolidField
     {
